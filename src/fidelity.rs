@@ -1,0 +1,96 @@
+//! The fidelity ladder (PHYSICS.md §4), cheapest first, and the `auto` choice.
+//!
+//! Every rung starts from the same exact path; they differ in what they keep of the physics:
+//!
+//! 1. `incoherent`: I = Σ I_j (paper Fig. 5).
+//! 2. `scalar`: scalar amplitudes √I_j with phase from the optical path only (P10; Fig. 6 left).
+//! 3. `scalar_jump`: + π for every reflection from the denser side (Fig. 6 right).
+//! 4. `paper_rules`: s and p with |Fresnel| and the π rules P7/P8, the paper's TIR phases
+//!    (Fig. 7 right), in 3D frames.
+//! 5. `vector`: complex Fresnel (P1–P6) in 3D frames, full vector sums: the reference.
+//!
+//! In the scalar rungs I_j is the ray's exact (vector) intensity, so a rung differs from
+//! `vector` only by the phase and polarization physics it drops.
+
+use serde::{Deserialize, Serialize};
+use std::fmt;
+
+/// A rung of the ladder.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+#[serde(rename_all = "snake_case")]
+pub enum Fidelity {
+    Incoherent,
+    Scalar,
+    ScalarJump,
+    PaperRules,
+    Vector,
+}
+
+impl Fidelity {
+    pub const ALL: [Fidelity; 5] = [
+        Fidelity::Incoherent,
+        Fidelity::Scalar,
+        Fidelity::ScalarJump,
+        Fidelity::PaperRules,
+        Fidelity::Vector,
+    ];
+
+    pub fn name(self) -> &'static str {
+        match self {
+            Fidelity::Incoherent => "incoherent",
+            Fidelity::Scalar => "scalar",
+            Fidelity::ScalarJump => "scalar_jump",
+            Fidelity::PaperRules => "paper_rules",
+            Fidelity::Vector => "vector",
+        }
+    }
+
+    pub fn parse(s: &str) -> Option<Fidelity> {
+        Fidelity::ALL.into_iter().find(|f| f.name() == s)
+    }
+}
+
+impl fmt::Display for Fidelity {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// What a scene needs, summarised from its traced paths (see [`auto_select`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct SceneNeeds {
+    /// Some coherence group receives two or more rays at some point.
+    pub interference: bool,
+    /// Some path has a reflection or refraction event.
+    pub interfaces: bool,
+    /// Within every group, all fields are parallel and real-proportional (linear, same axis).
+    pub parallel_fields: bool,
+    /// Some path is totally internally reflected.
+    pub tir: bool,
+}
+
+/// `auto`: the cheapest rung that is exact for a scene with these needs, and why.
+pub fn auto_select(needs: &SceneNeeds) -> (Fidelity, String) {
+    if !needs.interference {
+        return (
+            Fidelity::Incoherent,
+            "no two mutually coherent rays meet at any probe point: intensities add".into(),
+        );
+    }
+    if !needs.interfaces && needs.parallel_fields {
+        return (
+            Fidelity::Scalar,
+            "no reflections or refractions and parallel fields in every coherence group: path phase is the only phase".into(),
+        );
+    }
+    if !needs.tir {
+        return (
+            Fidelity::PaperRules,
+            "interfaces without total internal reflection: |Fresnel| with the π rules P7/P8 equals complex Fresnel exactly".into(),
+        );
+    }
+    (
+        Fidelity::Vector,
+        "total internal reflection: only complex Fresnel (P5, P6) gets the phase right".into(),
+    )
+}

@@ -1,0 +1,207 @@
+//! Fresnel coefficients and ray directions at a plane interface between two
+//! isotropic, lossless media.
+//!
+//! # Conventions (PHYSICS.md §1, fixed once for the whole crate)
+//!
+//! * Time dependence `e^{-iωt}`; a wave that travelled optical path `s` carries `e^{+i 2π s/λ0}`.
+//! * At an interface with unit normal `N` (either orientation) and incident direction `d_i`:
+//!   `s = normalize(d_i × N)`, and for every ray `d ∈ {d_i, d_r, d_t}`: `p = d × s`, so that
+//!   `(s, p, d)` is right-handed. A field is `E = a_s s + a_p p`.
+//! * `n1` is the index on the incident side, `n2` on the other side; `cos θt` follows from Snell.
+//! * The amplitude coefficients are the cosine forms (B&W §1.5.2), which stay finite at normal
+//!   incidence and for `n1 = n2`:
+//!
+//! ```text
+//! r_s = (n1 cos θi − n2 cos θt)/(n1 cos θi + n2 cos θt)      (P1)
+//! r_p = (n2 cos θi − n1 cos θt)/(n2 cos θi + n1 cos θt)      (P2)
+//! t_s = 2 n1 cos θi/(n1 cos θi + n2 cos θt)                  (P3)
+//! t_p = 2 n1 cos θi/(n2 cos θi + n1 cos θt)                  (P4)
+//! ```
+//!
+//! * Total internal reflection (`n1 sin θi > n2`): `cos θt = +i·sqrt((n1/n2)² sin²θi − 1)`
+//!   (the evanescent wave decays for `e^{-iωt}`); (P1), (P2) then have unit modulus with
+//!   `arg r_s = −2 atan(sqrt(sin²θi − n21²)/cos θi)` (P5) and
+//!   `arg r_p = −2 atan(sqrt(sin²θi − n21²)/(n21² cos θi))` (P6), `n21 = n2/n1`.
+//!
+//! Every function here is a pure kernel on scalars and unit vectors; angles are radians.
+
+use glam::DVec3;
+use num_complex::Complex64;
+
+/// Complex Fresnel amplitude coefficients for one incidence, in the frame of the module docs.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FresnelCoefficients {
+    /// Reflection coefficient for the s (⊥) component, (P1) or (P5) under TIR.
+    pub r_s: Complex64,
+    /// Reflection coefficient for the p (∥) component, (P2) or (P6) under TIR.
+    pub r_p: Complex64,
+    /// Transmission coefficient for s, (P3); under TIR the evanescent amplitude.
+    pub t_s: Complex64,
+    /// Transmission coefficient for p, (P4); under TIR the evanescent amplitude.
+    pub t_p: Complex64,
+    /// cos θt: real in [0, 1] outside TIR, `+i·κ` (κ ≥ 0) under TIR.
+    pub cos_theta_t: Complex64,
+    /// True when `n1 sin θi > n2` (no propagating transmitted wave).
+    pub total_internal_reflection: bool,
+}
+
+/// Power reflectance and transmittance for s and p: R = |r|², T = Re(n2 cos θt)/(n1 cos θi)·|t|².
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FresnelPower {
+    pub r_s: f64,
+    pub r_p: f64,
+    pub t_s: f64,
+    pub t_p: f64,
+}
+
+/// `cos² θt` from Snell's law in a form free of cancellation near the critical angle and for
+/// nearly equal indices: `cos²θt = ((n2 − n1)(n2 + n1) + n1² cos²θi)/n2²`.
+/// Negative values mean total internal reflection.
+pub fn cos2_theta_t(n1: f64, n2: f64, cos_theta_i: f64) -> f64 {
+    ((n2 - n1) * (n2 + n1) + n1 * n1 * cos_theta_i * cos_theta_i) / (n2 * n2)
+}
+
+/// Critical angle θc = asin(n2/n1) in radians, `None` when `n1 ≤ n2` (no TIR possible).
+pub fn critical_angle(n1: f64, n2: f64) -> Option<f64> {
+    (n1 > n2).then(|| (n2 / n1).asin())
+}
+
+/// Brewster angle θB = atan(n2/n1) in radians (PHYSICS.md §2, paper eq. 9).
+pub fn brewster_angle(n1: f64, n2: f64) -> f64 {
+    n2.atan2(n1)
+}
+
+/// Complex Fresnel coefficients (P1)–(P6) for incidence from index `n1` onto index `n2`.
+///
+/// `cos_theta_i` is |d_i·N| in [0, 1]; indices must be finite and positive (lossless media).
+pub fn fresnel(n1: f64, n2: f64, cos_theta_i: f64) -> FresnelCoefficients {
+    debug_assert!(n1 > 0.0 && n2 > 0.0, "indices must be positive");
+    let cos_i = cos_theta_i.clamp(0.0, 1.0);
+    let c2t = cos2_theta_t(n1, n2, cos_i);
+    let total_internal_reflection = c2t < 0.0;
+    // Evanescent branch: cos θt = +i sqrt(-cos²θt) for the e^{-iωt} convention.
+    let cos_t = if total_internal_reflection {
+        Complex64::new(0.0, (-c2t).sqrt())
+    } else {
+        Complex64::new(c2t.sqrt(), 0.0)
+    };
+    let n1ci = Complex64::from(n1 * cos_i);
+    let n2ci = Complex64::from(n2 * cos_i);
+    let n2ct = cos_t * n2;
+    let n1ct = cos_t * n1;
+    let den_s = n1ci + n2ct;
+    let den_p = n2ci + n1ct;
+    FresnelCoefficients {
+        r_s: (n1ci - n2ct) / den_s,
+        r_p: (n2ci - n1ct) / den_p,
+        t_s: 2.0 * n1ci / den_s,
+        t_p: 2.0 * n1ci / den_p,
+        cos_theta_t: cos_t,
+        total_internal_reflection,
+    }
+}
+
+impl FresnelCoefficients {
+    /// Power coefficients for this incidence. At exactly grazing incidence (cos θi = 0) no
+    /// power crosses the interface: T = 0, R = 1.
+    pub fn power(&self, n1: f64, n2: f64, cos_theta_i: f64) -> FresnelPower {
+        let ratio = if cos_theta_i > 0.0 {
+            n2 * self.cos_theta_t.re / (n1 * cos_theta_i)
+        } else {
+            0.0
+        };
+        FresnelPower {
+            r_s: self.r_s.norm_sqr(),
+            r_p: self.r_p.norm_sqr(),
+            t_s: ratio * self.t_s.norm_sqr(),
+            t_p: ratio * self.t_p.norm_sqr(),
+        }
+    }
+}
+
+/// The paper's rules (PHYSICS.md §2, P7/P8, paper eqs. 8–9, and the paper's TIR phases),
+/// expressed in this crate's frame so they can be compared with [`fresnel`] term by term.
+///
+/// Outside TIR: |r|, |t| from (P1)–(P4), with a π jump on E⊥ when n1 < n2 (P7) and on E∥ when
+/// (n1 < n2 ∧ θi < θB) ∨ (n1 > n2 ∧ θi > θB) (P8), measured in the continuing frame
+/// p'_r = −p_r. Refraction is co-phased. Under TIR the paper writes δ⊥ = +2 atan(…) and
+/// δ∥ = 2 atan(…) − π (continuing frame); converted here to p_r they are the complex
+/// conjugates of (P5), (P6): the opposite time convention.
+pub fn paper_rules(n1: f64, n2: f64, cos_theta_i: f64) -> FresnelCoefficients {
+    let exact = fresnel(n1, n2, cos_theta_i);
+    let cos_i = cos_theta_i.clamp(0.0, 1.0);
+    if exact.total_internal_reflection {
+        // Paper: E⊥ gains +2atan(..) = −arg(P5); E∥ in p' gains 2atan(..) − π, i.e. in p_r
+        // (one more sign) 2atan(..) = −arg(P6).
+        return FresnelCoefficients {
+            r_s: exact.r_s.conj(),
+            r_p: exact.r_p.conj(),
+            ..exact
+        };
+    }
+    let sign = |jump: bool| if jump { -1.0 } else { 1.0 };
+    let theta_i = cos_i.acos();
+    let theta_b = brewster_angle(n1, n2);
+    let jump_perp = n1 < n2;
+    let jump_par = (n1 < n2 && theta_i < theta_b) || (n1 > n2 && theta_i > theta_b);
+    // In the continuing frame p' = −p_r the paper's E∥ amplitude is ±|r_p|; in p_r it is ∓|r_p|.
+    FresnelCoefficients {
+        r_s: Complex64::from(sign(jump_perp) * exact.r_s.norm()),
+        r_p: Complex64::from(-sign(jump_par) * exact.r_p.norm()),
+        t_s: Complex64::from(exact.t_s.norm()),
+        t_p: Complex64::from(exact.t_p.norm()),
+        ..exact
+    }
+}
+
+/// An ideal (perfectly conducting) mirror: the n2 → ∞ limit of (P1), (P2):
+/// r_s = −1, r_p = +1 in this crate's frame (so at normal incidence E_r = −E_i), no transmission.
+pub fn ideal_mirror() -> FresnelCoefficients {
+    FresnelCoefficients {
+        r_s: Complex64::from(-1.0),
+        r_p: Complex64::from(1.0),
+        t_s: Complex64::from(0.0),
+        t_p: Complex64::from(0.0),
+        cos_theta_t: Complex64::from(0.0),
+        total_internal_reflection: false,
+    }
+}
+
+/// Mirror direction `d_r = d_i − 2 (d_i·N) N` (any orientation of N).
+pub fn reflect(d_i: DVec3, normal: DVec3) -> DVec3 {
+    d_i - 2.0 * d_i.dot(normal) * normal
+}
+
+/// Refracted direction by Snell's law (vector form, B&W §1.5.1), or `None` under total
+/// internal reflection. `eta = n1/n2`; `normal` may have either orientation.
+///
+/// `d_t = η d_i + (η cos θi − cos θt) N_o` with `N_o` the normal facing the incident side.
+/// Unlike `glam::DVec3::refract`, TIR is reported explicitly rather than as a zero vector.
+pub fn refract(d_i: DVec3, normal: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
+    let n_o = if d_i.dot(normal) < 0.0 { normal } else { -normal };
+    let cos_i = -d_i.dot(n_o);
+    let c2t = cos2_theta_t(n1, n2, cos_i);
+    if c2t < 0.0 {
+        return None;
+    }
+    let eta = n1 / n2;
+    Some((eta * d_i + (eta * cos_i - c2t.sqrt()) * n_o).normalize())
+}
+
+/// The s unit vector of PHYSICS.md §1: `normalize(d_i × N)`, oriented so that it does not
+/// depend on the orientation of N (`N` is first turned to face against `d_i`). At normal
+/// incidence (|d_i × N| below 1e-12) the plane of incidence is undefined and `fallback`
+/// (projected perpendicular to `d_i`) is used; any choice gives the same 3D fields.
+pub fn s_direction(d_i: DVec3, normal: DVec3, fallback: DVec3) -> DVec3 {
+    let n_o = if d_i.dot(normal) < 0.0 { normal } else { -normal };
+    let c = d_i.cross(n_o);
+    if c.length() > 1e-12 {
+        return c.normalize();
+    }
+    let f = fallback - fallback.dot(d_i) * d_i;
+    if f.length() > 1e-6 {
+        f.normalize()
+    } else {
+        d_i.any_orthonormal_vector()
+    }
+}

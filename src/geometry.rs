@@ -1,0 +1,92 @@
+//! Planes and the bounded pieces of planes that scenes are built from; ray–plane intersection.
+//!
+//! Lengths in metres. All scene surfaces are planar (the paper's scenes and the classical
+//! interferometers are), which lets the path solver unfold reflections exactly.
+
+use glam::DVec3;
+
+/// An oriented plane through `point` with unit `normal` (the normal points to the *front*).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Plane {
+    pub point: DVec3,
+    pub normal: DVec3,
+}
+
+impl Plane {
+    pub fn new(point: DVec3, normal: DVec3) -> Self {
+        Plane {
+            point,
+            normal: normal.normalize(),
+        }
+    }
+
+    /// Signed distance of `x` from the plane (positive on the front side).
+    pub fn signed_distance(&self, x: DVec3) -> f64 {
+        (x - self.point).dot(self.normal)
+    }
+
+    /// Ray parameter t (distance along the unit `dir`) where the ray from `origin` meets the
+    /// plane, or `None` if it runs parallel to it.
+    pub fn intersect(&self, origin: DVec3, dir: DVec3) -> Option<f64> {
+        let denom = dir.dot(self.normal);
+        if denom == 0.0 {
+            return None;
+        }
+        Some(-self.signed_distance(origin) / denom)
+    }
+
+    /// Mirror image of a point in the plane (the image method).
+    pub fn mirror_point(&self, x: DVec3) -> DVec3 {
+        x - 2.0 * self.signed_distance(x) * self.normal
+    }
+
+    /// Two unit in-plane axes (u, v) with u × v = normal; `u_hint` is projected into the plane.
+    pub fn axes(&self, u_hint: DVec3) -> (DVec3, DVec3) {
+        let u = u_hint - u_hint.dot(self.normal) * self.normal;
+        let u = if u.length() > 1e-12 {
+            u.normalize()
+        } else {
+            self.normal.any_orthonormal_vector()
+        };
+        (u, self.normal.cross(u))
+    }
+}
+
+/// An axis-aligned rectangle in a plane's (u, v) coordinates, centred at `center_uv` (m).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    pub center_uv: [f64; 2],
+    pub half_width_m: f64,
+    pub half_height_m: f64,
+}
+
+impl Rect {
+    pub fn contains(&self, uv: [f64; 2]) -> bool {
+        (uv[0] - self.center_uv[0]).abs() <= self.half_width_m
+            && (uv[1] - self.center_uv[1]).abs() <= self.half_height_m
+    }
+}
+
+/// The extent of a surface within its plane.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Extent {
+    Unbounded,
+    /// A rectangle in the plane's (u, v) axes.
+    Rect { u: DVec3, v: DVec3, rect: Rect },
+}
+
+impl Extent {
+    /// In-plane coordinates of `x` relative to the plane point.
+    pub fn uv(u: DVec3, v: DVec3, plane: &Plane, x: DVec3) -> [f64; 2] {
+        let d = x - plane.point;
+        [d.dot(u), d.dot(v)]
+    }
+
+    /// Whether the point `x` (on the plane) lies on the surface.
+    pub fn contains(&self, plane: &Plane, x: DVec3) -> bool {
+        match self {
+            Extent::Unbounded => true,
+            Extent::Rect { u, v, rect } => rect.contains(Self::uv(*u, *v, plane, x)),
+        }
+    }
+}

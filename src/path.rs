@@ -1,0 +1,637 @@
+//! The exact point-to-point path solver and the enumeration of surface sequences.
+//!
+//! A path is a source, a sequence of surface events (reflect / refract at surface k) and an
+//! end: a screen point P, or a direction (far field: observation at infinity through an ideal
+//! lens). The launch of the ray is described by two parameters (launch direction for point and
+//! line sources, launch position for plane waves); the solver finds them by damped Newton
+//! iteration on the landing residual with a central-difference Jacobian, starting from the
+//! image-method guess (reflections unfolded exactly, refractions ignored). It stops when the
+//! landing error is below `landing_tolerance × scene scale` and fails loudly otherwise: a
+//! missing path (TIR on a refraction event, a surface missed or outside its extent, P behind
+//! the ray, a blocking shield or an unlisted surface on the way) is an error with a reason.
+//!
+//! Geometric spreading (optional): the ray-tube cross-section at P per unit launch measure is
+//! |det J|·|d_f·d_ref| from the same Jacobian, so the field amplitude factor is
+//! `S² = (n_src/n_P)·Π_refractions(n2 cos θt/(n1 cos θi))·(launch measure)/(dA⊥)`; for a point
+//! source in a homogeneous medium this is exactly 1/r².
+
+use crate::interaction::{InterfaceHit, SurfaceOptics, indices_for};
+use crate::scene::{Scene, SceneOptics};
+use crate::source::Emitter;
+use crate::{fresnel, interaction};
+use glam::DVec3;
+
+/// Reflect or refract.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum EventKind {
+    Reflect,
+    Refract,
+}
+
+/// One surface event of a sequence.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub struct Event {
+    pub surface: usize,
+    pub kind: EventKind,
+}
+
+/// A surface sequence, in order from the source.
+pub type Sequence = Vec<Event>;
+
+/// Compact text for a sequence, e.g. `R0 T1 R2` (R: reflect, T: refract, number: surface).
+pub fn sequence_label(seq: &[Event]) -> String {
+    if seq.is_empty() {
+        return "direct".into();
+    }
+    seq.iter()
+        .map(|e| match e.kind {
+            EventKind::Reflect => format!("R{}", e.surface),
+            EventKind::Refract => format!("T{}", e.surface),
+        })
+        .collect::<Vec<_>>()
+        .join(" ")
+}
+
+/// Where a path ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Target {
+    /// A screen point (m).
+    Point(DVec3),
+    /// A far-field direction (unit); the phase is referred to the wavefront plane through
+    /// `reference` perpendicular to the direction (equal optical path to the lens focus).
+    Direction { dir: DVec3, reference: DVec3 },
+}
+
+/// Why a path does not exist.
+#[derive(Clone, Debug, PartialEq, thiserror::Error)]
+pub enum PathError {
+    #[error("total internal reflection at a refraction event (event {event})")]
+    TotalInternalReflection { event: usize },
+    #[error("the ray misses the plane of event {event}")]
+    Missed { event: usize },
+    #[error("event {event} lies outside the extent of surface {surface}")]
+    OutOfExtent { event: usize, surface: usize },
+    #[error("the ray arrives at event {event} from a medium it is not in")]
+    MediumMismatch { event: usize },
+    #[error("segment {segment} is blocked by surface {surface}")]
+    Blocked { segment: usize, surface: usize },
+    #[error("the end point lies behind the last segment")]
+    Behind,
+    #[error("the exit direction does not match the far-field direction")]
+    DirectionMismatch,
+    #[error("no convergence: landing error {landing_error_m:e} m after {iterations} iterations")]
+    NotConverged { landing_error_m: f64, iterations: usize },
+    #[error("surface {surface} is opaque and cannot be an event")]
+    OpaqueEvent { surface: usize },
+}
+
+/// Solver settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SolveOptions {
+    /// Accepted landing error relative to the scene scale (default 1e-12).
+    pub landing_tolerance: f64,
+    pub max_iterations: usize,
+    /// Compute the geometric spreading factor.
+    pub spreading: bool,
+}
+
+impl Default for SolveOptions {
+    fn default() -> Self {
+        SolveOptions {
+            landing_tolerance: 1e-12,
+            max_iterations: 80,
+            spreading: false,
+        }
+    }
+}
+
+/// A solved path: the polyline from the launch point through every event to the end.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SolvedPath {
+    pub sequence: Sequence,
+    /// Launch point, every event point, and the end point (for the far field: the last event
+    /// point, or the launch point for a direct path).
+    pub points: Vec<DVec3>,
+    /// Unit direction of each segment (`points.len() - 1` entries, plus the exit direction for
+    /// the far field: always `points.len()` entries, the last being the final direction).
+    pub dirs: Vec<DVec3>,
+    /// Refractive index along each segment (same length as `dirs`).
+    pub indices: Vec<f64>,
+    /// Σ n_i L_i from the launch to the end (far field: to the reference wavefront) (m).
+    pub optical_path_m: f64,
+    /// Distance between the landing point and the target (m); for the far field the sine of the
+    /// angle between the exit and target directions.
+    pub landing_error: f64,
+    pub iterations: usize,
+    /// Number of reflections from the optically denser side (n1 < n2, or a mirror): the π
+    /// jumps of `scalar_jump` (PHYSICS.md §4).
+    pub denser_reflections: usize,
+    /// Whether any reflection event was total internal reflection.
+    pub has_tir: bool,
+    /// S², the intensity factor of geometric spreading (1 when spreading is off).
+    pub spreading: f64,
+}
+
+/// The geometric ray state during a trace.
+struct Geometry {
+    points: Vec<DVec3>,
+    dirs: Vec<DVec3>,
+    indices: Vec<f64>,
+    denser_reflections: usize,
+    has_tir: bool,
+    /// Π over refractions of n2 cos θt/(n1 cos θi).
+    refraction_factor: f64,
+}
+
+/// The surface's optics or an error if it is opaque.
+fn surface_optics(optics: &SceneOptics, event: usize, surface: usize) -> Result<SurfaceOptics, PathError> {
+    let _ = event;
+    optics.surfaces[surface].ok_or(PathError::OpaqueEvent { surface })
+}
+
+/// Trace a ray through `seq` on the unbounded planes (no extents, no blockers).
+fn trace_planes(
+    scene: &Scene,
+    optics: &SceneOptics,
+    origin: DVec3,
+    dir: DVec3,
+    seq: &[Event],
+) -> Result<Geometry, PathError> {
+    let mut g = Geometry {
+        points: vec![origin],
+        dirs: vec![dir],
+        indices: vec![optics.ambient_index],
+        denser_reflections: 0,
+        has_tir: false,
+        refraction_factor: 1.0,
+    };
+    let (mut o, mut d, mut n) = (origin, dir, optics.ambient_index);
+    for (k, ev) in seq.iter().enumerate() {
+        let surf = &scene.surfaces[ev.surface];
+        let so = surface_optics(optics, k, ev.surface)?;
+        let t = surf
+            .plane
+            .intersect(o, d)
+            .filter(|t| *t > 0.0)
+            .ok_or(PathError::Missed { event: k })?;
+        let x = o + t * d;
+        let normal = surf.plane.normal;
+        let cos_i = d.dot(normal).abs().min(1.0);
+        let (n1, n2) = indices_for(so, normal, d);
+        let mirror = matches!(so, SurfaceOptics::IdealMirror);
+        if !mirror && n1 != n {
+            return Err(PathError::MediumMismatch { event: k });
+        }
+        let (d_new, n_new) = match ev.kind {
+            EventKind::Reflect => {
+                if mirror || n1 < n2 {
+                    g.denser_reflections += 1;
+                }
+                if !mirror && fresnel::cos2_theta_t(n1, n2, cos_i) < 0.0 {
+                    g.has_tir = true;
+                }
+                (fresnel::reflect(d, normal), n)
+            }
+            EventKind::Refract => {
+                if mirror {
+                    return Err(PathError::TotalInternalReflection { event: k });
+                }
+                let d_t = fresnel::refract(d, normal, n1, n2)
+                    .ok_or(PathError::TotalInternalReflection { event: k })?;
+                let cos_t = d_t.dot(normal).abs();
+                g.refraction_factor *= (n2 * cos_t) / (n1 * cos_i);
+                (d_t, n2)
+            }
+        };
+        g.points.push(x);
+        g.dirs.push(d_new);
+        g.indices.push(n_new);
+        o = x;
+        d = d_new;
+        n = n_new;
+    }
+    Ok(g)
+}
+
+/// How the two launch parameters map to a launch ray.
+struct LaunchModel {
+    emitter: Emitter,
+    /// Guess direction (point/line) or fixed direction (plane wave).
+    g: DVec3,
+    e1: DVec3,
+    e2: DVec3,
+    base: DVec3,
+}
+
+impl LaunchModel {
+    fn new(emitter: Emitter, guess_dir: DVec3, guess_origin: DVec3) -> Self {
+        match emitter {
+            Emitter::Point { position } => {
+                let g = guess_dir.normalize();
+                let e1 = g.any_orthonormal_vector();
+                LaunchModel { emitter, g, e1, e2: g.cross(e1), base: position }
+            }
+            Emitter::Line { point, axis } => {
+                let a = axis.normalize();
+                let gp = guess_dir - guess_dir.dot(a) * a;
+                let g = if gp.length() > 1e-12 { gp.normalize() } else { a.any_orthonormal_vector() };
+                // Origin nearest to the guess origin along the axis.
+                let base = point + (guess_origin - point).dot(a) * a;
+                LaunchModel { emitter, g, e1: a, e2: a.cross(g), base }
+            }
+            Emitter::PlaneWave { direction, reference_point } => {
+                let g = direction.normalize();
+                let e1 = g.any_orthonormal_vector();
+                // Start on the reference plane, on the line through the guess origin.
+                let base = guess_origin - (guess_origin - reference_point).dot(g) * g;
+                LaunchModel { emitter, g, e1, e2: g.cross(e1), base }
+            }
+        }
+    }
+
+    fn launch(&self, p: [f64; 2]) -> (DVec3, DVec3) {
+        match self.emitter {
+            Emitter::Point { .. } => (self.base, (self.g + p[0] * self.e1 + p[1] * self.e2).normalize()),
+            Emitter::Line { .. } => (self.base + p[0] * self.e1, (self.g + p[1] * self.e2).normalize()),
+            Emitter::PlaneWave { .. } => (self.base + p[0] * self.e1 + p[1] * self.e2, self.g),
+        }
+    }
+
+    /// Launch measure per unit parameter area: solid angle (point, gnomonic Jacobian
+    /// (1+a²+b²)^{-3/2}), length × angle (line), or area (plane wave).
+    fn measure(&self, p: [f64; 2]) -> f64 {
+        match self.emitter {
+            Emitter::Point { .. } => (1.0 + p[0] * p[0] + p[1] * p[1]).powf(-1.5),
+            Emitter::Line { .. } => 1.0 / (1.0 + p[1] * p[1]),
+            Emitter::PlaneWave { .. } => 1.0,
+        }
+    }
+
+    /// Finite-difference step per parameter.
+    fn step(&self, scale: f64) -> [f64; 2] {
+        match self.emitter {
+            Emitter::Point { .. } => [1e-6, 1e-6],
+            Emitter::Line { .. } => [1e-6 * scale, 1e-6],
+            Emitter::PlaneWave { .. } => [1e-6 * scale, 1e-6 * scale],
+        }
+    }
+}
+
+/// Image-method initial guess: the target mirrored through every reflection, in reverse order.
+fn unfolded_target(scene: &Scene, seq: &[Event], p: DVec3) -> DVec3 {
+    seq.iter().rev().fold(p, |x, ev| match ev.kind {
+        EventKind::Reflect => scene.surfaces[ev.surface].plane.mirror_point(x),
+        EventKind::Refract => x,
+    })
+}
+
+fn residual(
+    g: &Geometry,
+    target: &Target,
+    frame: (DVec3, DVec3, DVec3),
+) -> Option<[f64; 2]> {
+    let (o, d) = (*g.points.last()?, *g.dirs.last()?);
+    let (dref, f1, f2) = frame;
+    match target {
+        Target::Point(p) => {
+            let denom = d.dot(dref);
+            if denom <= 0.0 {
+                return None;
+            }
+            let t = (*p - o).dot(dref) / denom;
+            let x = o + t * d - *p;
+            Some([x.dot(f1), x.dot(f2)])
+        }
+        Target::Direction { .. } => Some([d.dot(f1), d.dot(f2)]),
+    }
+}
+
+fn norm2(r: [f64; 2]) -> f64 {
+    r[0].hypot(r[1])
+}
+
+/// Solve the 2×2 system J x = b (Cramer's rule); `None` if singular.
+fn solve2(j: [[f64; 2]; 2], b: [f64; 2]) -> Option<[f64; 2]> {
+    let det = j[0][0] * j[1][1] - j[0][1] * j[1][0];
+    if det == 0.0 || !det.is_finite() {
+        return None;
+    }
+    Some([
+        (b[0] * j[1][1] - j[0][1] * b[1]) / det,
+        (j[0][0] * b[1] - b[0] * j[1][0]) / det,
+    ])
+}
+
+/// The scene scale used for tolerances: the distance from the source anchor to the target
+/// (or to the farthest event plane point), never below 1 µm.
+fn scene_scale(scene: &Scene, anchor: DVec3, target: &Target) -> f64 {
+    let mut s = match target {
+        Target::Point(p) => (*p - anchor).length(),
+        Target::Direction { reference, .. } => (*reference - anchor).length(),
+    };
+    for surf in &scene.surfaces {
+        s = s.max((surf.plane.point - anchor).length());
+    }
+    s.max(1e-6)
+}
+
+/// Find the exact path from `emitter` through `seq` to `target`.
+pub fn solve(
+    scene: &Scene,
+    optics: &SceneOptics,
+    emitter: Emitter,
+    seq: &[Event],
+    target: Target,
+    opts: &SolveOptions,
+) -> Result<SolvedPath, PathError> {
+    let anchor = match emitter {
+        Emitter::Point { position } => position,
+        Emitter::Line { point, .. } => point,
+        Emitter::PlaneWave { reference_point, .. } => reference_point,
+    };
+    let scale = scene_scale(scene, anchor, &target);
+
+    // Plane wave into the far field: every launch is equivalent; trace from the reference point.
+    if let (Emitter::PlaneWave { direction, reference_point }, Target::Direction { dir, .. }) = (emitter, target) {
+        let g = trace_planes(scene, optics, reference_point, direction.normalize(), seq)?;
+        let d_f = *g.dirs.last().unwrap();
+        let err = d_f.cross(dir.normalize()).length();
+        if err > 1e-9 || d_f.dot(dir) <= 0.0 {
+            return Err(PathError::DirectionMismatch);
+        }
+        return finish(scene, g, seq, &target, err, 0, 1.0);
+    }
+
+    // Initial guess by the image method.
+    let (guess_dir, guess_origin) = match target {
+        Target::Point(p) => {
+            let img = unfolded_target(scene, seq, p);
+            (img - anchor, img)
+        }
+        Target::Direction { dir, .. } => {
+            // Unfold the direction: mirror it through every reflection plane in reverse order.
+            let d = seq.iter().rev().fold(dir, |d, ev| match ev.kind {
+                EventKind::Reflect => fresnel::reflect(d, scene.surfaces[ev.surface].plane.normal),
+                EventKind::Refract => d,
+            });
+            (d, anchor)
+        }
+    };
+    let model = LaunchModel::new(emitter, guess_dir, guess_origin);
+    let trace = |p: [f64; 2]| {
+        let (o, d) = model.launch(p);
+        trace_planes(scene, optics, o, d, seq)
+    };
+    let mut x = [0.0, 0.0];
+    let g0 = trace(x)?;
+    let dref = match target {
+        Target::Point(_) => *g0.dirs.last().unwrap(),
+        Target::Direction { dir, .. } => dir.normalize(),
+    };
+    let f1 = dref.any_orthonormal_vector();
+    let frame = (dref, f1, dref.cross(f1));
+    let res = |p: [f64; 2]| trace(p).ok().and_then(|g| residual(&g, &target, frame));
+    let tol = match target {
+        Target::Point(_) => opts.landing_tolerance * scale,
+        Target::Direction { .. } => 1e-13,
+    };
+    let h = model.step(scale);
+    let jacobian = |p: [f64; 2]| -> Option<[[f64; 2]; 2]> {
+        let mut j = [[0.0; 2]; 2];
+        for k in 0..2 {
+            let mut pp = p;
+            let mut pm = p;
+            pp[k] += h[k];
+            pm[k] -= h[k];
+            let (rp, rm) = (res(pp)?, res(pm)?);
+            for i in 0..2 {
+                j[i][k] = (rp[i] - rm[i]) / (2.0 * h[k]);
+            }
+        }
+        Some(j)
+    };
+
+    let mut r = res(x).ok_or(PathError::Behind)?;
+    let mut iterations = 0;
+    while norm2(r) > tol && iterations < opts.max_iterations {
+        iterations += 1;
+        let Some(j) = jacobian(x) else { break };
+        let Some(delta) = solve2(j, [-r[0], -r[1]]) else { break };
+        // Damped step: halve until the residual decreases.
+        let mut lambda = 1.0;
+        let mut improved = false;
+        while lambda > 1e-12 {
+            let xn = [x[0] + lambda * delta[0], x[1] + lambda * delta[1]];
+            if let Some(rn) = res(xn) {
+                if norm2(rn) < norm2(r) {
+                    x = xn;
+                    r = rn;
+                    improved = true;
+                    break;
+                }
+            }
+            lambda *= 0.5;
+        }
+        if !improved {
+            break;
+        }
+    }
+    let landing_error = norm2(r);
+    if landing_error > tol.max(opts.landing_tolerance * scale) {
+        return Err(PathError::NotConverged { landing_error_m: landing_error, iterations });
+    }
+    let mut g = trace(x)?;
+    let spreading = if opts.spreading {
+        let j = jacobian(x).ok_or(PathError::NotConverged { landing_error_m: landing_error, iterations })?;
+        let det = (j[0][0] * j[1][1] - j[0][1] * j[1][0]).abs();
+        let d_f = *g.dirs.last().unwrap();
+        let area = det * d_f.dot(frame.0).abs();
+        let n_src = optics.ambient_index;
+        let n_end = *g.indices.last().unwrap();
+        (n_src / n_end) * g.refraction_factor * model.measure(x) / area
+    } else {
+        1.0
+    };
+    if let Target::Point(p) = target {
+        // Land exactly on P: the last segment ends at the target point.
+        let last = *g.points.last().unwrap();
+        if (p - last).dot(*g.dirs.last().unwrap()) <= 0.0 {
+            return Err(PathError::Behind);
+        }
+        g.points.push(p);
+    }
+    finish(scene, g, seq, &target, landing_error, iterations, spreading)
+}
+
+/// Validate extents and blockers and assemble the [`SolvedPath`].
+fn finish(
+    scene: &Scene,
+    g: Geometry,
+    seq: &[Event],
+    target: &Target,
+    landing_error: f64,
+    iterations: usize,
+    spreading: f64,
+) -> Result<SolvedPath, PathError> {
+    // Each event point must lie on its surface.
+    for (k, ev) in seq.iter().enumerate() {
+        if !scene.surfaces[ev.surface].interacts(g.points[k + 1]) {
+            return Err(PathError::OutOfExtent { event: k, surface: ev.surface });
+        }
+    }
+    // No segment may cross a blocker or an unlisted interacting surface.
+    let far = matches!(target, Target::Direction { .. });
+    let n_seg = if far { g.points.len() } else { g.points.len() - 1 };
+    for i in 0..n_seg {
+        let a = g.points[i];
+        let d = g.dirs[i];
+        let len = if i + 1 < g.points.len() { (g.points[i + 1] - a).length() } else { f64::INFINITY };
+        let skip = |j: usize| {
+            (i >= 1 && seq[i - 1].surface == j) || (i < seq.len() && seq[i].surface == j)
+        };
+        for (j, surf) in scene.surfaces.iter().enumerate() {
+            if skip(j) {
+                continue;
+            }
+            if let Some(t) = surf.plane.intersect(a, d) {
+                let eps = 1e-12 * (1.0 + t.abs());
+                if t > eps && t < len - eps {
+                    let x = a + t * d;
+                    if surf.blocks(x) || surf.interacts(x) {
+                        return Err(PathError::Blocked { segment: i, surface: j });
+                    }
+                }
+            }
+        }
+    }
+    let mut optical_path_m: f64 = (0..g.points.len() - 1)
+        .map(|i| g.indices[i] * (g.points[i + 1] - g.points[i]).length())
+        .sum();
+    if let Target::Direction { reference, .. } = target {
+        // To the far-field wavefront through `reference`: −n·d·(X_exit − reference).
+        let (x, d, n) = (*g.points.last().unwrap(), *g.dirs.last().unwrap(), *g.indices.last().unwrap());
+        optical_path_m -= n * d.dot(x - *reference);
+    }
+    Ok(SolvedPath {
+        sequence: seq.to_vec(),
+        optical_path_m,
+        landing_error,
+        iterations,
+        denser_reflections: g.denser_reflections,
+        has_tir: g.has_tir,
+        spreading,
+        points: g.points,
+        dirs: g.dirs,
+        indices: g.indices,
+    })
+}
+
+/// Limits of sequence enumeration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnumerationLimits {
+    /// Maximum number of reflections inside a medium other than the ambient one.
+    pub max_internal_reflections: usize,
+    /// Maximum number of events in a sequence.
+    pub max_events: usize,
+}
+
+impl Default for EnumerationLimits {
+    fn default() -> Self {
+        EnumerationLimits { max_internal_reflections: 1, max_events: 8 }
+    }
+}
+
+/// Discover the surface sequences light from `emitter` can follow: probe rays are traced
+/// forward (toward each of `probe_targets`) through the real, bounded scene, branching into
+/// reflected and refracted children, and every node of the resulting ray trees is a candidate
+/// sequence. Sequences are returned sorted and without duplicates; the exact solver decides
+/// which of them reach a given point.
+pub fn discover_sequences(
+    scene: &Scene,
+    optics: &SceneOptics,
+    emitter: Emitter,
+    probe_targets: &[DVec3],
+    limits: &EnumerationLimits,
+) -> Vec<Sequence> {
+    let mut found = std::collections::BTreeSet::new();
+    for &p in probe_targets {
+        let (o, d) = match emitter {
+            Emitter::Point { position } => (position, (p - position).normalize()),
+            Emitter::Line { point, axis } => {
+                let a = axis.normalize();
+                let o = point + (p - point).dot(a) * a;
+                (o, (p - o).normalize())
+            }
+            Emitter::PlaneWave { direction, reference_point } => {
+                let d = direction.normalize();
+                (p - (p - reference_point).dot(d) * d, d)
+            }
+        };
+        if !d.is_finite() {
+            continue;
+        }
+        let mut seq = Vec::new();
+        explore(scene, optics, o, d, optics.ambient_index, None, 0, &mut seq, limits, &mut found);
+    }
+    found.into_iter().collect()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn explore(
+    scene: &Scene,
+    optics: &SceneOptics,
+    o: DVec3,
+    d: DVec3,
+    n: f64,
+    from: Option<usize>,
+    internal: usize,
+    seq: &mut Sequence,
+    limits: &EnumerationLimits,
+    found: &mut std::collections::BTreeSet<Sequence>,
+) {
+    found.insert(seq.clone());
+    if seq.len() >= limits.max_events {
+        return;
+    }
+    // Nearest surface ahead that stops or splits the ray.
+    let mut best: Option<(f64, usize)> = None;
+    for (j, surf) in scene.surfaces.iter().enumerate() {
+        if Some(j) == from {
+            continue;
+        }
+        if let Some(t) = surf.plane.intersect(o, d) {
+            if t > 1e-12 && best.is_none_or(|(bt, _)| t < bt) {
+                let x = o + t * d;
+                if surf.blocks(x) || surf.interacts(x) {
+                    best = Some((t, j));
+                }
+            }
+        }
+    }
+    let Some((t, j)) = best else { return };
+    let x = o + t * d;
+    let Some(so) = optics.surfaces[j] else { return }; // opaque: absorbed
+    let normal = scene.surfaces[j].plane.normal;
+    let hit = InterfaceHit {
+        surface: j,
+        point: x,
+        normal,
+        optics: so,
+        coherence: scene.surfaces[j].coherence(),
+    };
+    let (n1, n2) = interaction::indices_for(so, normal, d);
+    let is_internal = n != optics.ambient_index;
+    if !is_internal || internal < limits.max_internal_reflections {
+        seq.push(Event { surface: j, kind: EventKind::Reflect });
+        let inc = usize::from(is_internal);
+        explore(scene, optics, x, fresnel::reflect(d, normal), n, Some(j), internal + inc, seq, limits, found);
+        seq.pop();
+    }
+    if let SurfaceOptics::Dielectric { .. } = hit.optics {
+        if let Some(d_t) = fresnel::refract(d, normal, n1, n2) {
+            seq.push(Event { surface: j, kind: EventKind::Refract });
+            explore(scene, optics, x, d_t, n2, Some(j), internal, seq, limits, found);
+            seq.pop();
+        }
+    }
+}

@@ -1,0 +1,203 @@
+//! The linear polarized ray of zero thickness (paper §3.5): R = {P0, dir, X, Y, attributes}.
+//!
+//! The frame (X, Y, dir) is right-handed. The polarization is a Jones vector (J_x, J_y) in that
+//! frame; the complex 3D field amplitude is `E = J_x X + J_y Y` and the field at the ray's end is
+//! `E·e^{+i 2π Op/λ0}` (time dependence e^{-iωt}, PHYSICS.md §1). Fresnel phases live in the
+//! Jones vector; path phase lives in the optical path `Op = Σ n_i L_i` (metres, f64), so that
+//! path *differences* can be formed before any phase is taken. Intensity = |J_x|² + |J_y|² =
+//! trace of the coherence matrix.
+
+use glam::DVec3;
+use num_complex::Complex64;
+use std::fmt::Write as _;
+
+/// A complex 3D field vector (x, y, z components).
+pub type Field3 = [Complex64; 3];
+
+/// Coherence id 0: coherent with nothing (paper §3.4).
+pub const INCOHERENT: u64 = 0;
+
+/// One contribution to a ray's phase, recorded so a report can explain a fringe.
+#[derive(Clone, Debug, PartialEq)]
+pub enum LedgerEntry {
+    /// Propagation over `length_m` metres in a medium of index `index`: phase 2π n L/λ0.
+    Path { index: f64, length_m: f64 },
+    /// A reflection at `surface`: arg r_s, arg r_p (radians) and whether it was TIR.
+    Reflection {
+        surface: usize,
+        phase_s: f64,
+        phase_p: f64,
+        tir: bool,
+    },
+    /// A refraction at `surface`: arg t_s, arg t_p (radians; 0 for lossless media).
+    Refraction {
+        surface: usize,
+        phase_s: f64,
+        phase_p: f64,
+    },
+    /// A coherence change at `surface` (the child lost coherence, or the coherence length rule).
+    CoherenceLost { surface: Option<usize> },
+}
+
+/// The per-ray phase ledger: every contribution to the phase in the order it happened.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct PhaseLedger {
+    pub entries: Vec<LedgerEntry>,
+}
+
+impl PhaseLedger {
+    /// Σ n_i L_i over the recorded path entries (metres).
+    pub fn optical_path_m(&self) -> f64 {
+        self.entries
+            .iter()
+            .map(|e| match e {
+                LedgerEntry::Path { index, length_m } => index * length_m,
+                _ => 0.0,
+            })
+            .sum()
+    }
+
+    /// A human-readable account of the phase, one line per entry, at vacuum wavelength `lambda_m`.
+    pub fn explain(&self, lambda_m: f64) -> String {
+        let mut out = String::new();
+        for e in &self.entries {
+            let _ = match e {
+                LedgerEntry::Path { index, length_m } => writeln!(
+                    out,
+                    "path: n = {index:.6}, L = {length_m:.9e} m, n·L = {:.9e} m = {:.6} cycles",
+                    index * length_m,
+                    index * length_m / lambda_m
+                ),
+                LedgerEntry::Reflection {
+                    surface,
+                    phase_s,
+                    phase_p,
+                    tir,
+                } => writeln!(
+                    out,
+                    "reflection at surface {surface}{}: arg r_s = {:.6} rad, arg r_p = {:.6} rad",
+                    if *tir { " (TIR)" } else { "" },
+                    phase_s,
+                    phase_p
+                ),
+                LedgerEntry::Refraction {
+                    surface,
+                    phase_s,
+                    phase_p,
+                } => writeln!(
+                    out,
+                    "refraction at surface {surface}: arg t_s = {phase_s:.6} rad, arg t_p = {phase_p:.6} rad"
+                ),
+                LedgerEntry::CoherenceLost { surface } => {
+                    writeln!(out, "coherence lost (surface {surface:?})")
+                }
+            };
+        }
+        out
+    }
+}
+
+/// A linear polarized ray with the attributes of paper §3.5.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Ray {
+    /// P0: where the ray starts (m).
+    pub origin: DVec3,
+    /// Unit direction of propagation.
+    pub dir: DVec3,
+    /// Unit X axis of the polarization frame (X × Y = dir).
+    pub x: DVec3,
+    /// Unit Y axis of the polarization frame.
+    pub y: DVec3,
+    /// Vacuum wavelength λ0 (m).
+    pub wavelength_m: f64,
+    /// Which source point emitted the ray; 0 = coherent with nothing.
+    pub coherence_id: u64,
+    /// Coherence length of the source (m); `f64::INFINITY` for ideal monochromatic light.
+    pub coherence_length_m: f64,
+    /// Jones vector (complex amplitudes along X and Y); includes Fresnel phases.
+    pub jones: [Complex64; 2],
+    /// Optical path Σ n_i L_i from the source (m).
+    pub optical_path_m: f64,
+    /// Refractive index of the medium the ray travels in.
+    pub index: f64,
+    /// Every phase contribution so far.
+    pub ledger: PhaseLedger,
+}
+
+impl Ray {
+    /// A linearly polarized ray with real amplitude `amplitude` along `e_dir` (projected
+    /// perpendicular to `dir`; if `e_dir` is parallel to `dir` an arbitrary perpendicular is used).
+    pub fn linear(
+        origin: DVec3,
+        dir: DVec3,
+        e_dir: DVec3,
+        amplitude: f64,
+        wavelength_m: f64,
+        index: f64,
+    ) -> Ray {
+        let dir = dir.normalize();
+        let e = e_dir - e_dir.dot(dir) * dir;
+        let x = if e.length() > 1e-12 {
+            e.normalize()
+        } else {
+            dir.any_orthonormal_vector()
+        };
+        let y = dir.cross(x);
+        Ray {
+            origin,
+            dir,
+            x,
+            y,
+            wavelength_m,
+            coherence_id: INCOHERENT,
+            coherence_length_m: f64::INFINITY,
+            jones: [Complex64::from(amplitude), Complex64::from(0.0)],
+            optical_path_m: 0.0,
+            index,
+            ledger: PhaseLedger::default(),
+        }
+    }
+
+    /// The complex 3D field amplitude `J_x X + J_y Y` (without the path phase).
+    pub fn field(&self) -> Field3 {
+        let [jx, jy] = self.jones;
+        [
+            jx * self.x.x + jy * self.y.x,
+            jx * self.x.y + jy * self.y.y,
+            jx * self.x.z + jy * self.y.z,
+        ]
+    }
+
+    /// Intensity |J_x|² + |J_y|² (the trace of the coherence matrix).
+    pub fn intensity(&self) -> f64 {
+        self.jones[0].norm_sqr() + self.jones[1].norm_sqr()
+    }
+
+    /// The 2×2 coherence (polarization) matrix J J† in the (X, Y) frame.
+    pub fn coherence_matrix(&self) -> [[Complex64; 2]; 2] {
+        let [a, b] = self.jones;
+        [[a * a.conj(), a * b.conj()], [b * a.conj(), b * b.conj()]]
+    }
+
+    /// Phase in cycles, Op/λ0 (the path phase divided by 2π).
+    pub fn phase_cycles(&self) -> f64 {
+        self.optical_path_m / self.wavelength_m
+    }
+
+    /// Move the ray's origin to `point` along its direction, adding n·L to the optical path
+    /// and a ledger entry. `point` must lie ahead on the ray.
+    pub fn advance_to(&mut self, point: DVec3) {
+        let length_m = (point - self.origin).length();
+        self.optical_path_m += self.index * length_m;
+        self.ledger.entries.push(LedgerEntry::Path {
+            index: self.index,
+            length_m,
+        });
+        self.origin = point;
+    }
+
+    /// Scale the Jones vector by a real factor (e.g. geometric spreading).
+    pub fn scale(&mut self, factor: f64) {
+        self.jones = [self.jones[0] * factor, self.jones[1] * factor];
+    }
+}

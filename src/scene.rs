@@ -1,0 +1,198 @@
+//! Scenes built from planes: interfaces (unbounded or rectangular), plates, wedges, mirrors,
+//! opaque screens with apertures, absorbing shields; plus sources. Lengths in metres.
+//!
+//! Every interface separates a *front* medium (the side its normal points to) from a *back*
+//! medium, so the tracer always knows the indices on both sides of an event; the region the
+//! sources sit in is the scene's `ambient` medium.
+
+use crate::geometry::{Extent, Plane, Rect};
+use crate::interaction::SurfaceOptics;
+use crate::material::{CoherenceRules, IndexError, Medium};
+use crate::source::Source;
+use glam::DVec3;
+
+/// What a surface does to light.
+#[derive(Clone, Debug, PartialEq)]
+pub enum SurfaceKind {
+    /// A dielectric interface (Fresnel reflection and refraction).
+    Interface {
+        front: Medium,
+        back: Medium,
+        coherence: CoherenceRules,
+    },
+    /// A perfectly conducting mirror (both sides).
+    IdealMirror { coherence: CoherenceRules },
+    /// Opaque everywhere on its extent except inside the rectangular `apertures` (u, v coords).
+    Opaque { apertures: Vec<Rect> },
+}
+
+/// A planar surface.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Surface {
+    pub name: String,
+    pub plane: Plane,
+    pub extent: Extent,
+    pub kind: SurfaceKind,
+}
+
+impl Surface {
+    /// Whether the surface stops a ray at the (in-plane) point `x`.
+    pub fn blocks(&self, x: DVec3) -> bool {
+        if !self.extent.contains(&self.plane, x) {
+            return false;
+        }
+        match &self.kind {
+            SurfaceKind::Opaque { apertures } => {
+                let (u, v) = match self.extent {
+                    Extent::Rect { u, v, .. } => (u, v),
+                    Extent::Unbounded => self.plane.axes(DVec3::X),
+                };
+                let uv = Extent::uv(u, v, &self.plane, x);
+                !apertures.iter().any(|a| a.contains(uv))
+            }
+            _ => false,
+        }
+    }
+
+    /// Whether light interacts (reflects/refracts) at `x`.
+    pub fn interacts(&self, x: DVec3) -> bool {
+        !matches!(self.kind, SurfaceKind::Opaque { .. }) && self.extent.contains(&self.plane, x)
+    }
+
+    /// The surface's optics at vacuum wavelength `lambda_m`, `None` for opaque surfaces.
+    pub fn optics(&self, lambda_m: f64) -> Result<Option<SurfaceOptics>, IndexError> {
+        Ok(match &self.kind {
+            SurfaceKind::Interface { front, back, .. } => Some(SurfaceOptics::Dielectric {
+                n_front: front.index(lambda_m)?,
+                n_back: back.index(lambda_m)?,
+            }),
+            SurfaceKind::IdealMirror { .. } => Some(SurfaceOptics::IdealMirror),
+            SurfaceKind::Opaque { .. } => None,
+        })
+    }
+
+    pub fn coherence(&self) -> CoherenceRules {
+        match &self.kind {
+            SurfaceKind::Interface { coherence, .. } | SurfaceKind::IdealMirror { coherence } => {
+                *coherence
+            }
+            SurfaceKind::Opaque { .. } => CoherenceRules::default(),
+        }
+    }
+}
+
+/// A scene: an ambient medium, planar surfaces and sources.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Scene {
+    pub ambient: Medium,
+    pub surfaces: Vec<Surface>,
+    pub sources: Vec<Source>,
+}
+
+/// Indices of every surface at one wavelength (`None` for opaque ones) plus the ambient index.
+#[derive(Clone, Debug, PartialEq)]
+pub struct SceneOptics {
+    pub lambda_m: f64,
+    pub ambient_index: f64,
+    pub surfaces: Vec<Option<SurfaceOptics>>,
+}
+
+impl Scene {
+    pub fn new(ambient: Medium) -> Self {
+        Scene {
+            ambient,
+            surfaces: Vec::new(),
+            sources: Vec::new(),
+        }
+    }
+
+    /// Evaluate every index at `lambda_m`.
+    pub fn optics(&self, lambda_m: f64) -> Result<SceneOptics, IndexError> {
+        Ok(SceneOptics {
+            lambda_m,
+            ambient_index: self.ambient.index(lambda_m)?,
+            surfaces: self
+                .surfaces
+                .iter()
+                .map(|s| s.optics(lambda_m))
+                .collect::<Result<_, _>>()?,
+        })
+    }
+
+    /// Add an unbounded interface; returns its index.
+    pub fn add_interface(&mut self, name: &str, plane: Plane, front: Medium, back: Medium) -> usize {
+        self.surfaces.push(Surface {
+            name: name.into(),
+            plane,
+            extent: Extent::Unbounded,
+            kind: SurfaceKind::Interface {
+                front,
+                back,
+                coherence: CoherenceRules::default(),
+            },
+        });
+        self.surfaces.len() - 1
+    }
+
+    /// A plane-parallel plate: top face through `top_point` with outward normal `normal`,
+    /// thickness `thickness_m`, `medium` inside, `above` over it and `below` under it.
+    /// Returns the indices of (top, bottom).
+    pub fn add_plate(
+        &mut self,
+        name: &str,
+        top_point: DVec3,
+        normal: DVec3,
+        thickness_m: f64,
+        above: Medium,
+        medium: Medium,
+        below: Medium,
+    ) -> (usize, usize) {
+        let n = normal.normalize();
+        let top = self.add_interface(
+            &format!("{name}.top"),
+            Plane::new(top_point, n),
+            above,
+            medium.clone(),
+        );
+        let bottom = self.add_interface(
+            &format!("{name}.bottom"),
+            Plane::new(top_point - thickness_m * n, n),
+            medium,
+            below,
+        );
+        (top, bottom)
+    }
+
+    /// A wedge: the top face as in [`Scene::add_plate`], the bottom face through the point
+    /// `thickness_m` below `top_point`, tilted by `angle_rad` about the in-plane `hinge_axis`.
+    #[allow(clippy::too_many_arguments)]
+    pub fn add_wedge(
+        &mut self,
+        name: &str,
+        top_point: DVec3,
+        normal: DVec3,
+        thickness_m: f64,
+        angle_rad: f64,
+        hinge_axis: DVec3,
+        above: Medium,
+        medium: Medium,
+        below: Medium,
+    ) -> (usize, usize) {
+        let n = normal.normalize();
+        let axis = (hinge_axis - hinge_axis.dot(n) * n).normalize();
+        let tilted = glam::DQuat::from_axis_angle(axis, angle_rad) * n;
+        let top = self.add_interface(
+            &format!("{name}.top"),
+            Plane::new(top_point, n),
+            above,
+            medium.clone(),
+        );
+        let bottom = self.add_interface(
+            &format!("{name}.bottom"),
+            Plane::new(top_point - thickness_m * n, tilted),
+            medium,
+            below,
+        );
+        (top, bottom)
+    }
+}

@@ -1,0 +1,257 @@
+//! Exact tracing at a point: every source channel along every surface sequence that reaches
+//! the target, each ray carried through the real interactions (with its ledger), then turned
+//! into accumulation-core contributions at any rung of the fidelity ladder.
+
+use crate::accumulate::{Accumulator, Contribution};
+use crate::fidelity::{Fidelity, SceneNeeds};
+use crate::interaction::{CoefficientModel, InterfaceHit, interact};
+use crate::path::{self, EnumerationLimits, EventKind, PathError, Sequence, SolveOptions, SolvedPath, Target};
+use crate::ray::{INCOHERENT, LedgerEntry, Ray};
+use crate::scene::{Scene, SceneOptics};
+use crate::source::Channel;
+use glam::DVec3;
+use num_complex::Complex64;
+
+/// Tracing settings.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TraceSettings {
+    pub limits: EnumerationLimits,
+    pub solve: SolveOptions,
+}
+
+impl Default for TraceSettings {
+    fn default() -> Self {
+        TraceSettings {
+            limits: EnumerationLimits::default(),
+            solve: SolveOptions::default(),
+        }
+    }
+}
+
+/// The candidate surface sequences of every source, discovered once per scene.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Plan {
+    pub sequences: Vec<Vec<Sequence>>,
+}
+
+/// Discover the sequences of every source with probe rays toward `probe_targets` (typically the
+/// detector's corners and centre) and toward every surface and its mirror images.
+pub fn plan(scene: &Scene, optics: &SceneOptics, probe_targets: &[DVec3], limits: &EnumerationLimits) -> Plan {
+    let mut targets: Vec<DVec3> = probe_targets.to_vec();
+    for surf in &scene.surfaces {
+        targets.push(surf.plane.point);
+        for &p in probe_targets {
+            // The specular point of p on this plane, seen from each source.
+            for src in &scene.sources {
+                let a = src.anchor();
+                let img = surf.plane.mirror_point(p);
+                if let Some(t) = surf.plane.intersect(a, (img - a).normalize()) {
+                    if t > 0.0 {
+                        targets.push(a + t * (img - a).normalize());
+                    }
+                }
+            }
+        }
+    }
+    Plan {
+        sequences: scene
+            .sources
+            .iter()
+            .map(|s| path::discover_sequences(scene, optics, s.emitter, &targets, limits))
+            .collect(),
+    }
+}
+
+/// One ray arriving at a target, with its exact path and its state under both polarized models.
+#[derive(Clone, Debug)]
+pub struct Arrival {
+    pub source: usize,
+    pub channel: Channel,
+    pub path: SolvedPath,
+    /// The ray propagated with complex Fresnel coefficients.
+    pub vector: Ray,
+    /// The ray propagated with the paper's rules.
+    pub paper: Ray,
+}
+
+/// A sequence that did not give a path, and why (for reports).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Failure {
+    pub source: usize,
+    pub sequence: Sequence,
+    pub error: PathError,
+}
+
+/// Carry a channel's ray along a solved path through the real interactions.
+pub fn propagate(
+    scene: &Scene,
+    optics: &SceneOptics,
+    channel: &Channel,
+    coherence_length_m: f64,
+    path: &SolvedPath,
+    target: &Target,
+    model: CoefficientModel,
+) -> Ray {
+    let d0 = path.dirs[0];
+    let mut ray = Ray::linear(
+        path.points[0],
+        d0,
+        channel.field_direction(d0),
+        (channel.intensity * path.spreading).sqrt(),
+        optics.lambda_m,
+        optics.ambient_index,
+    );
+    ray.coherence_id = channel.coherence_id;
+    ray.coherence_length_m = coherence_length_m;
+    for (k, ev) in path.sequence.iter().enumerate() {
+        let surf = &scene.surfaces[ev.surface];
+        let hit = InterfaceHit {
+            surface: ev.surface,
+            point: path.points[k + 1],
+            normal: surf.plane.normal,
+            optics: optics.surfaces[ev.surface].expect("solved paths only meet non-opaque surfaces"),
+            coherence: surf.coherence(),
+        };
+        let children = interact(&ray, &hit, model);
+        ray = match ev.kind {
+            EventKind::Reflect => children.reflected,
+            EventKind::Refract => children
+                .refracted
+                .expect("solved paths only refract where a refracted ray exists"),
+        };
+    }
+    match target {
+        Target::Point(p) => ray.advance_to(*p),
+        Target::Direction { reference, .. } => {
+            // Projection onto the far-field wavefront through `reference`.
+            let proj = -ray.dir.dot(ray.origin - *reference);
+            ray.optical_path_m += ray.index * proj;
+            ray.ledger.entries.push(LedgerEntry::Path {
+                index: ray.index,
+                length_m: proj,
+            });
+        }
+    }
+    // The paper's coherence-length rule (P9): a ray whose own path exceeds the source's
+    // coherence length loses coherence.
+    if ray.optical_path_m > coherence_length_m && ray.coherence_id != INCOHERENT {
+        ray.coherence_id = INCOHERENT;
+        ray.ledger.entries.push(LedgerEntry::CoherenceLost { surface: None });
+    }
+    ray
+}
+
+/// Every ray reaching `target`, and every candidate sequence that did not.
+pub fn arrivals(
+    scene: &Scene,
+    optics: &SceneOptics,
+    plan: &Plan,
+    target: &Target,
+    settings: &TraceSettings,
+) -> (Vec<Arrival>, Vec<Failure>) {
+    let mut found = Vec::new();
+    let mut failed = Vec::new();
+    for (si, src) in scene.sources.iter().enumerate() {
+        for seq in &plan.sequences[si] {
+            match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
+                Ok(p) => {
+                    for ch in src.channels() {
+                        let v = propagate(scene, optics, &ch, src.coherence_length_m, &p, target, CoefficientModel::Vector);
+                        let r = propagate(scene, optics, &ch, src.coherence_length_m, &p, target, CoefficientModel::PaperRules);
+                        found.push(Arrival {
+                            source: si,
+                            channel: ch,
+                            path: p.clone(),
+                            vector: v,
+                            paper: r,
+                        });
+                    }
+                }
+                Err(error) => failed.push(Failure {
+                    source: si,
+                    sequence: seq.clone(),
+                    error,
+                }),
+            }
+        }
+    }
+    (found, failed)
+}
+
+/// The accumulation-core contribution of an arrival at a rung of the ladder.
+pub fn contribution(a: &Arrival, level: Fidelity) -> Contribution {
+    let v = &a.vector;
+    let scalar = |extra_cycles: f64| Contribution {
+        coherence_id: v.coherence_id,
+        phase_cycles: v.phase_cycles() + extra_cycles,
+        field: [Complex64::from(v.intensity().sqrt()), Complex64::default(), Complex64::default()],
+    };
+    match level {
+        Fidelity::Incoherent => Contribution {
+            coherence_id: INCOHERENT,
+            ..scalar(0.0)
+        },
+        Fidelity::Scalar => scalar(0.0),
+        Fidelity::ScalarJump => scalar(0.5 * a.path.denser_reflections as f64),
+        Fidelity::PaperRules => Contribution {
+            coherence_id: a.paper.coherence_id,
+            phase_cycles: a.paper.phase_cycles(),
+            field: a.paper.field(),
+        },
+        Fidelity::Vector => Contribution {
+            coherence_id: v.coherence_id,
+            phase_cycles: v.phase_cycles(),
+            field: v.field(),
+        },
+    }
+}
+
+/// Intensity of a set of arrivals at a rung of the ladder.
+pub fn intensity(arrivals: &[Arrival], level: Fidelity) -> f64 {
+    let mut acc = Accumulator::new();
+    for a in arrivals {
+        acc.add(&contribution(a, level));
+    }
+    acc.intensity()
+}
+
+/// What the arrivals at one point need from the ladder (merge points with [`merge_needs`]).
+pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
+    let mut n = SceneNeeds {
+        parallel_fields: true,
+        ..Default::default()
+    };
+    for (i, a) in arrivals.iter().enumerate() {
+        n.interfaces |= !a.path.sequence.is_empty();
+        n.tir |= a.path.has_tir;
+        let id = a.vector.coherence_id;
+        if id == INCOHERENT {
+            continue;
+        }
+        for b in &arrivals[..i] {
+            if b.vector.coherence_id != id {
+                continue;
+            }
+            n.interference = true;
+            // Parallel, real-proportional fields: |E_a·E_b*| = |E_a||E_b|.
+            let (ea, eb) = (a.vector.field(), b.vector.field());
+            let dot: Complex64 = (0..3).map(|k| ea[k] * eb[k].conj()).sum();
+            let na = a.vector.intensity().sqrt();
+            let nb = b.vector.intensity().sqrt();
+            if (dot.norm() - na * nb).abs() > 1e-12 * na * nb || dot.im.abs() > 1e-12 * na * nb {
+                n.parallel_fields = false;
+            }
+        }
+    }
+    n
+}
+
+/// Combine the needs of several points.
+pub fn merge_needs(a: SceneNeeds, b: SceneNeeds) -> SceneNeeds {
+    SceneNeeds {
+        interference: a.interference || b.interference,
+        interfaces: a.interfaces || b.interfaces,
+        parallel_fields: a.parallel_fields && b.parallel_fields,
+        tir: a.tir || b.tir,
+    }
+}
