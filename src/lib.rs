@@ -11,3 +11,4 @@ pub mod source;
 pub mod accumulate;
 pub mod fidelity;
 pub mod trace;
+pub mod colour;
