@@ -167,6 +167,23 @@ pub fn ideal_mirror() -> FresnelCoefficients {
     }
 }
 
+/// An ideal thin lossless beam splitter of power reflectance `reflectance` (zero thickness,
+/// no deviation): seen from the front (the side the normal points to) it reflects like an
+/// attenuated perfect mirror, r_s = −√R, r_p = +√R; from the back with the opposite signs
+/// (Stokes: r' = −r); t_s = t_p = √(1−R), so t t' − r r' = 1 and R + T = 1.
+pub fn ideal_splitter(reflectance: f64, from_front: bool) -> FresnelCoefficients {
+    let r = reflectance.sqrt() * if from_front { 1.0 } else { -1.0 };
+    let t = Complex64::from((1.0 - reflectance).sqrt());
+    FresnelCoefficients {
+        r_s: Complex64::from(-r),
+        r_p: Complex64::from(r),
+        t_s: t,
+        t_p: t,
+        cos_theta_t: Complex64::from(1.0),
+        total_internal_reflection: false,
+    }
+}
+
 /// Mirror direction `d_r = d_i − 2 (d_i·N) N` (any orientation of N).
 pub fn reflect(d_i: DVec3, normal: DVec3) -> DVec3 {
     d_i - 2.0 * d_i.dot(normal) * normal

@@ -29,6 +29,8 @@ pub enum SurfaceOptics {
     Dielectric { n_front: f64, n_back: f64 },
     /// A perfectly conducting mirror (reflects from either side, transmits nothing).
     IdealMirror,
+    /// An ideal thin beam splitter of power reflectance R in a uniform medium of index `n`.
+    Splitter { reflectance: f64, n: f64 },
 }
 
 /// The local description of one ray–surface encounter.
@@ -74,6 +76,7 @@ pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3) -> (f64, f6
             }
         }
         SurfaceOptics::IdealMirror => (f64::NAN, f64::INFINITY),
+        SurfaceOptics::Splitter { n, .. } => (n, n),
     }
 }
 
@@ -108,6 +111,9 @@ pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Child
     let (n1, n2) = indices_for(hit.optics, hit.normal, d_i);
     let coefficients = match (hit.optics, model) {
         (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
+        (SurfaceOptics::Splitter { reflectance, .. }, _) => {
+            fresnel::ideal_splitter(reflectance, d_i.dot(hit.normal) < 0.0)
+        }
         (SurfaceOptics::Dielectric { .. }, CoefficientModel::Vector) => {
             fresnel::fresnel(n1, n2, cos_theta_i)
         }
@@ -137,7 +143,7 @@ pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Child
     // Step 4: the refracted child, unless TIR or a mirror.
     let refracted = match hit.optics {
         SurfaceOptics::IdealMirror => None,
-        SurfaceOptics::Dielectric { .. } => {
+        SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } => {
             fresnel::refract(d_i, hit.normal, n1, n2).map(|d_t| {
                 let mut t = child(
                     &parent,

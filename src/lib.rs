@@ -12,3 +12,4 @@ pub mod accumulate;
 pub mod fidelity;
 pub mod trace;
 pub mod colour;
+pub mod analytic;

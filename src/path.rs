@@ -179,15 +179,16 @@ fn trace_planes(
         let cos_i = d.dot(normal).abs().min(1.0);
         let (n1, n2) = indices_for(so, normal, d);
         let mirror = matches!(so, SurfaceOptics::IdealMirror);
+        let splitter = matches!(so, SurfaceOptics::Splitter { .. });
         if !mirror && n1 != n {
             return Err(PathError::MediumMismatch { event: k });
         }
         let (d_new, n_new) = match ev.kind {
             EventKind::Reflect => {
-                if mirror || n1 < n2 {
+                if mirror || n1 < n2 || (splitter && d.dot(normal) < 0.0) {
                     g.denser_reflections += 1;
                 }
-                if !mirror && fresnel::cos2_theta_t(n1, n2, cos_i) < 0.0 {
+                if !mirror && !splitter && fresnel::cos2_theta_t(n1, n2, cos_i) < 0.0 {
                     g.has_tir = true;
                 }
                 (fresnel::reflect(d, normal), n)
@@ -627,7 +628,7 @@ fn explore(
         explore(scene, optics, x, fresnel::reflect(d, normal), n, Some(j), internal + inc, seq, limits, found);
         seq.pop();
     }
-    if let SurfaceOptics::Dielectric { .. } = hit.optics {
+    if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics {
         if let Some(d_t) = fresnel::refract(d, normal, n1, n2) {
             seq.push(Event { surface: j, kind: EventKind::Refract });
             explore(scene, optics, x, d_t, n2, Some(j), internal, seq, limits, found);

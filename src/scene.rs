@@ -22,6 +22,12 @@ pub enum SurfaceKind {
     },
     /// A perfectly conducting mirror (both sides).
     IdealMirror { coherence: CoherenceRules },
+    /// An ideal thin beam splitter (power reflectance R) inside `medium`.
+    Splitter {
+        reflectance: f64,
+        medium: Medium,
+        coherence: CoherenceRules,
+    },
     /// Opaque everywhere on its extent except inside the rectangular `apertures` (u, v coords).
     Opaque { apertures: Vec<Rect> },
 }
@@ -67,15 +73,23 @@ impl Surface {
                 n_back: back.index(lambda_m)?,
             }),
             SurfaceKind::IdealMirror { .. } => Some(SurfaceOptics::IdealMirror),
+            SurfaceKind::Splitter {
+                reflectance,
+                medium,
+                ..
+            } => Some(SurfaceOptics::Splitter {
+                reflectance: *reflectance,
+                n: medium.index(lambda_m)?,
+            }),
             SurfaceKind::Opaque { .. } => None,
         })
     }
 
     pub fn coherence(&self) -> CoherenceRules {
         match &self.kind {
-            SurfaceKind::Interface { coherence, .. } | SurfaceKind::IdealMirror { coherence } => {
-                *coherence
-            }
+            SurfaceKind::Interface { coherence, .. }
+            | SurfaceKind::IdealMirror { coherence }
+            | SurfaceKind::Splitter { coherence, .. } => *coherence,
             SurfaceKind::Opaque { .. } => CoherenceRules::default(),
         }
     }

@@ -5,6 +5,7 @@
 //! path solver.
 
 pub mod coherence;
+pub mod lloyd;
 pub mod michelson;
 pub mod plate;
 pub mod tir;

@@ -1,0 +1,67 @@
+//! Michelson interferometer with an ideal thin beam splitter and ideal mirrors (B&W §7.5.4):
+//! each arm is a virtual image of the source, found by mirroring the source through the
+//! reflecting planes in order; the field is carried by the vector image rule of a perfect
+//! mirror, E_r = −R_N(E_i) with R_N(v) = v − 2(v·N)N (equivalently r_s = −1, r_p = +1 in the
+//! crate's frame), scaled by the splitter's amplitude √R (front side: −R_N, back side: +R_N,
+//! the Stokes relation r' = −r) or √(1−R) in transmission.
+
+use super::path_phasor;
+use glam::DVec3;
+use num_complex::Complex64;
+
+/// One reflection of an arm: the plane and the signed amplitude factor σ in E_r = σ·R_N(E_i).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Reflection {
+    pub point: DVec3,
+    pub normal: DVec3,
+    pub factor: f64,
+}
+
+/// An arm: reflections in order and the product of transmission amplitudes.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Arm {
+    pub reflections: Vec<Reflection>,
+    pub transmission: f64,
+}
+
+fn mirror(v: DVec3, n: DVec3) -> DVec3 {
+    v - 2.0 * v.dot(n) * n
+}
+
+impl Arm {
+    /// Virtual source: the source mirrored through every reflection plane in order.
+    pub fn virtual_source(&self, src: DVec3) -> DVec3 {
+        self.reflections
+            .iter()
+            .fold(src, |x, r| x - 2.0 * (x - r.point).dot(r.normal) * r.normal)
+    }
+
+    /// Field (without path phase) arriving at `p` for a launch field given as a function of
+    /// the launch direction; the launch direction is the arrival direction mirrored back.
+    pub fn field(&self, src: DVec3, p: DVec3, launch_field: impl Fn(DVec3) -> DVec3) -> (DVec3, f64) {
+        let vs = self.virtual_source(src);
+        let d_arrive = (p - vs).normalize();
+        let d_launch = self.reflections.iter().rev().fold(d_arrive, |d, r| mirror(d, r.normal));
+        let mut e = launch_field(d_launch);
+        let mut amp = self.transmission;
+        for r in &self.reflections {
+            e = mirror(e, r.normal);
+            amp *= r.factor;
+        }
+        (e * amp, (p - vs).length())
+    }
+}
+
+/// Intensity at `p` for one linear channel (launch field direction from `launch_field`,
+/// unit intensity), arms mutually coherent, spreading off: |Σ_arms E_a e^{i2π r_a/λ}|².
+pub fn intensity(arms: &[Arm], src: DVec3, p: DVec3, lambda_m: f64, launch_field: impl Fn(DVec3) -> DVec3 + Copy) -> f64 {
+    let mut sum = [Complex64::default(); 3];
+    for arm in arms {
+        let (e, r) = arm.field(src, p, launch_field);
+        let ph = path_phasor(r, lambda_m);
+        for (k, c) in [e.x, e.y, e.z].into_iter().enumerate() {
+            sum[k] += ph * c;
+        }
+    }
+    sum.iter().map(|c| c.norm_sqr()).sum()
+}

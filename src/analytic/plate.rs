@@ -1,0 +1,215 @@
+//! Plane-parallel plates and films: the Airy multi-beam sum (B&W §7.6.1, §1.6.4; PHYSICS.md §5
+//! "Plate / film, multi-beam (Airy)"), its truncation, and the two-beam reflection of a point
+//! source (paper §4.2, Fig. 4 left) with the geometry solved here in one dimension.
+
+use super::path_phasor;
+use crate::fresnel::fresnel;
+use num_complex::Complex64;
+
+/// s or p.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pol {
+    S,
+    P,
+}
+
+/// Fresnel r, t for one polarization.
+fn rt(n1: f64, n2: f64, cos_i: f64, pol: Pol) -> (Complex64, Complex64) {
+    let f = fresnel(n1, n2, cos_i);
+    match pol {
+        Pol::S => (f.r_s, f.t_s),
+        Pol::P => (f.r_p, f.t_p),
+    }
+}
+
+/// A three-medium stack n1 | n2 (thickness d) | n3 lit from n1 at angle θ1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Film {
+    pub n1: f64,
+    pub n2: f64,
+    pub n3: f64,
+    pub thickness_m: f64,
+}
+
+/// The quantities of the Airy sum at one angle, wavelength and polarization.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AiryTerms {
+    pub r12: Complex64,
+    pub t12: Complex64,
+    pub r21: Complex64,
+    pub t21: Complex64,
+    pub r23: Complex64,
+    pub t23: Complex64,
+    /// Round-trip phase β = (4π/λ) n2 d cos θ2.
+    pub beta: f64,
+    /// cos θ1 and cos θ3 (for the power ratio of transmission).
+    pub cos1: f64,
+    pub cos3: f64,
+}
+
+impl Film {
+    /// The Fresnel coefficients and round-trip phase at incidence cos θ1 (must not be TIR at
+    /// the 1→2 interface).
+    pub fn terms(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> AiryTerms {
+        let sin2_1 = 1.0 - cos_theta_1 * cos_theta_1;
+        let cos2 = (1.0 - sin2_1 * (self.n1 / self.n2).powi(2)).sqrt();
+        let c3sq = 1.0 - sin2_1 * (self.n1 / self.n3).powi(2);
+        let cos3 = c3sq.max(0.0).sqrt();
+        let (r12, t12) = rt(self.n1, self.n2, cos_theta_1, pol);
+        let (r21, t21) = rt(self.n2, self.n1, cos2, pol);
+        let (r23, t23) = rt(self.n2, self.n3, cos2, pol);
+        AiryTerms {
+            r12,
+            t12,
+            r21,
+            t21,
+            r23,
+            t23,
+            beta: 4.0 * std::f64::consts::PI * self.n2 * self.thickness_m * cos2 / lambda_m,
+            cos1: cos_theta_1,
+            cos3,
+        }
+    }
+
+    /// Airy reflection amplitude r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}) (PHYSICS.md §5).
+    pub fn r(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let e = Complex64::from_polar(1.0, a.beta);
+        a.r12 + a.t12 * a.t21 * a.r23 * e / (1.0 - a.r21 * a.r23 * e)
+    }
+
+    /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}).
+    pub fn t(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let e = Complex64::from_polar(1.0, a.beta);
+        a.t12 * a.t23 * Complex64::from_polar(1.0, 0.5 * a.beta) / (1.0 - a.r21 * a.r23 * e)
+    }
+
+    /// Reflectance R = |r|².
+    pub fn reflectance(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> f64 {
+        self.r(cos_theta_1, lambda_m, pol).norm_sqr()
+    }
+
+    /// Transmittance T = (n3 cos θ3)/(n1 cos θ1)·|t|² (0 when the wave cannot leave into n3).
+    pub fn transmittance(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> f64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        if a.cos3 == 0.0 {
+            return 0.0;
+        }
+        self.n3 * a.cos3 / (self.n1 * cos_theta_1) * self.t(cos_theta_1, lambda_m, pol).norm_sqr()
+    }
+
+    /// The reflection amplitude summed over the first `orders` reflected beams only: order 0 is
+    /// r12, order m ≥ 1 is t12 t21 r23 (r21 r23)^{m−1} e^{imβ} (m round trips).
+    pub fn r_truncated(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, orders: usize) -> Complex64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let mut sum = if orders > 0 { a.r12 } else { Complex64::default() };
+        let mut term = a.t12 * a.t21 * a.r23 * Complex64::from_polar(1.0, a.beta);
+        let q = a.r21 * a.r23 * Complex64::from_polar(1.0, a.beta);
+        for _ in 1..orders {
+            sum += term;
+            term *= q;
+        }
+        sum
+    }
+
+    /// Bound on the amplitude of the reflected orders left out after `orders` beams:
+    /// |t12 t21 r23| |r21 r23|^{orders−1}/(1 − |r21 r23|) (geometric tail).
+    pub fn r_tail_bound(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, orders: usize) -> f64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let q = (a.r21 * a.r23).norm();
+        if q >= 1.0 {
+            return f64::INFINITY;
+        }
+        let first = (a.t12 * a.t21 * a.r23).norm();
+        first * q.powi(orders.saturating_sub(1) as i32) / (1.0 - q)
+    }
+
+    /// The number of reflected orders needed so that the amplitude tail bound is ≤ `epsilon`:
+    /// cost grows like log(1/ε)/log(1/|r21 r23|).
+    pub fn orders_for_bound(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, epsilon: f64) -> usize {
+        let mut n = 1;
+        while self.r_tail_bound(cos_theta_1, lambda_m, pol, n) > epsilon && n < 100_000 {
+            n += 1;
+        }
+        n
+    }
+}
+
+/// Geometry of the two-beam point-source plate (paper Fig. 4 left): source at height `h_src`
+/// above the top face, observation point at height `h_obs`, horizontal separation `x`, plate
+/// thickness `d`, indices n1 (ambient, also below) and n2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TwoBeamPlate {
+    pub n1: f64,
+    pub n2: f64,
+    pub thickness_m: f64,
+    pub h_src_m: f64,
+    pub h_obs_m: f64,
+}
+
+/// One of the two beams at the observation point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Beam {
+    /// Angle of incidence on the top face (rad).
+    pub theta: f64,
+    /// Optical path (m).
+    pub optical_path_m: f64,
+    /// Amplitude factors for s and p (product of Fresnel coefficients).
+    pub amp_s: Complex64,
+    pub amp_p: Complex64,
+}
+
+impl TwoBeamPlate {
+    /// Beam 1: reflection at the top face (image method): tan θ = x/(h_s + h_o).
+    pub fn beam_top(&self, x_m: f64) -> Beam {
+        let h = self.h_src_m + self.h_obs_m;
+        let theta = x_m.atan2(h);
+        let f = fresnel(self.n1, self.n2, theta.cos());
+        Beam {
+            theta,
+            optical_path_m: self.n1 * x_m.hypot(h),
+            amp_s: f.r_s,
+            amp_p: f.r_p,
+        }
+    }
+
+    /// Beam 2: refracted in, reflected at the bottom face, refracted out. The angle solves
+    /// x = (h_s + h_o) tan θ + 2 d tan θt, sin θt = (n1/n2) sin θ, by bisection (monotone in θ).
+    pub fn beam_bottom(&self, x_m: f64) -> Beam {
+        let h = self.h_src_m + self.h_obs_m;
+        let d = self.thickness_m;
+        let (n1, n2) = (self.n1, self.n2);
+        let lateral = |theta: f64| {
+            let st = n1 / n2 * theta.sin();
+            h * theta.tan() + 2.0 * d * st / (1.0 - st * st).sqrt() - x_m
+        };
+        let theta = super::bisect(0.0, std::f64::consts::FRAC_PI_2 * (1.0 - 1e-15), lateral);
+        let cos_i = theta.cos();
+        let st = n1 / n2 * theta.sin();
+        let cos_t = (1.0 - st * st).sqrt();
+        let f12 = fresnel(n1, n2, cos_i);
+        let f23 = fresnel(n2, n1, cos_t);
+        let f21 = fresnel(n2, n1, cos_t);
+        Beam {
+            theta,
+            optical_path_m: n1 * h / cos_i + 2.0 * n2 * d / cos_t,
+            amp_s: f12.t_s * f23.r_s * f21.t_s,
+            amp_p: f12.t_p * f23.r_p * f21.t_p,
+        }
+    }
+
+    /// Two-beam intensity for an unpolarized unit-intensity source whose channels are s and p
+    /// at every ray (observation points in one plane of incidence), spreading off:
+    /// I = ½|a1s e^{iφ1} + a2s e^{iφ2}|² + ½(|a1p|² + |a2p|² + 2 Re(a1p a2p* e^{i(φ1−φ2)}) cos(θ1 − θ2)),
+    /// where the p fields p_k = d_k × s of the two arriving rays make the angle θ1 − θ2.
+    pub fn intensity_unpolarized(&self, x_m: f64, lambda_m: f64) -> f64 {
+        let (b1, b2) = (self.beam_top(x_m), self.beam_bottom(x_m));
+        let ph = path_phasor(b1.optical_path_m - b2.optical_path_m, lambda_m);
+        let i_s = (b1.amp_s * ph + b2.amp_s).norm_sqr();
+        let i_p = b1.amp_p.norm_sqr()
+            + b2.amp_p.norm_sqr()
+            + 2.0 * (b1.amp_p * b2.amp_p.conj() * ph).re * (b1.theta - b2.theta).cos();
+        0.5 * (i_s + i_p)
+    }
+}
