@@ -77,6 +77,18 @@ pub fn brewster_angle(n1: f64, n2: f64) -> f64 {
 pub fn fresnel(n1: f64, n2: f64, cos_theta_i: f64) -> FresnelCoefficients {
     debug_assert!(n1 > 0.0 && n2 > 0.0, "indices must be positive");
     let cos_i = cos_theta_i.clamp(0.0, 1.0);
+    if n1 == n2 {
+        // No interface: the limit of (P1)–(P4) for n2 → n1 at every angle, including exactly
+        // grazing incidence where the cosine forms are 0/0.
+        return FresnelCoefficients {
+            r_s: Complex64::from(0.0),
+            r_p: Complex64::from(0.0),
+            t_s: Complex64::from(1.0),
+            t_p: Complex64::from(1.0),
+            cos_theta_t: Complex64::from(cos_i),
+            total_internal_reflection: false,
+        };
+    }
     let c2t = cos2_theta_t(n1, n2, cos_i);
     let total_internal_reflection = c2t < 0.0;
     // Evanescent branch: cos θt = +i sqrt(-cos²θt) for the e^{-iωt} convention.
@@ -195,7 +207,11 @@ pub fn reflect(d_i: DVec3, normal: DVec3) -> DVec3 {
 /// `d_t = η d_i + (η cos θi − cos θt) N_o` with `N_o` the normal facing the incident side.
 /// Unlike `glam::DVec3::refract`, TIR is reported explicitly rather than as a zero vector.
 pub fn refract(d_i: DVec3, normal: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
-    let n_o = if d_i.dot(normal) < 0.0 { normal } else { -normal };
+    let n_o = if d_i.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    };
     let cos_i = -d_i.dot(n_o);
     let c2t = cos2_theta_t(n1, n2, cos_i);
     if c2t < 0.0 {
@@ -210,10 +226,16 @@ pub fn refract(d_i: DVec3, normal: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
 /// incidence (|d_i × N| below 1e-12) the plane of incidence is undefined and `fallback`
 /// (projected perpendicular to `d_i`) is used; any choice gives the same 3D fields.
 pub fn s_direction(d_i: DVec3, normal: DVec3, fallback: DVec3) -> DVec3 {
-    let n_o = if d_i.dot(normal) < 0.0 { normal } else { -normal };
+    let n_o = if d_i.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    };
     let c = d_i.cross(n_o);
     if c.length() > 1e-12 {
-        return c.normalize();
+        // Near normal incidence d_i × N has relative error ε/|d_i × N|: project out N again so s
+        // stays ⟂ N and d_i to rounding (a no-op in exact arithmetic; tests/interaction_props.rs).
+        return (c - c.dot(n_o) * n_o).normalize();
     }
     let f = fallback - fallback.dot(d_i) * d_i;
     if f.length() > 1e-6 {

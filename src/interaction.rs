@@ -65,8 +65,9 @@ fn dot(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
 }
 
-/// The (incident-side, far-side) indices for a ray travelling along `dir`.
-pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3) -> (f64, f64) {
+/// The (incident-side, far-side) indices for a ray travelling along `dir` in a medium of index
+/// `current` (a mirror has the ray's medium on both sides as far as the ray is concerned).
+pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3, current: f64) -> (f64, f64) {
     match optics {
         SurfaceOptics::Dielectric { n_front, n_back } => {
             if dir.dot(normal) < 0.0 {
@@ -75,7 +76,7 @@ pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3) -> (f64, f6
                 (n_back, n_front)
             }
         }
-        SurfaceOptics::IdealMirror => (f64::NAN, f64::INFINITY),
+        SurfaceOptics::IdealMirror => (current, current),
         SurfaceOptics::Splitter { n, .. } => (n, n),
     }
 }
@@ -89,7 +90,9 @@ fn child(parent: &Ray, dir: DVec3, s: DVec3, jones: [Complex64; 2], index: f64, 
     ray.index = index;
     if !keep && ray.coherence_id != INCOHERENT {
         ray.coherence_id = INCOHERENT;
-        ray.ledger.entries.push(LedgerEntry::CoherenceLost { surface: None });
+        ray.ledger
+            .entries
+            .push(LedgerEntry::CoherenceLost { surface: None });
     }
     ray
 }
@@ -108,7 +111,7 @@ pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Child
     let (a_s, a_p) = (dot(&e, s), dot(&e, p_i));
 
     // Step 2: the coefficients.
-    let (n1, n2) = indices_for(hit.optics, hit.normal, d_i);
+    let (n1, n2) = indices_for(hit.optics, hit.normal, d_i, parent.index);
     let coefficients = match (hit.optics, model) {
         (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
         (SurfaceOptics::Splitter { reflectance, .. }, _) => {

@@ -35,9 +35,17 @@ pub enum Dispersion {
 /// Errors of index evaluation.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum IndexError {
-    #[error("wavelength {lambda_nm} nm is outside the validity range {min_nm}–{max_nm} nm of the dispersion formula")]
-    OutOfRange { lambda_nm: f64, min_nm: f64, max_nm: f64 },
-    #[error("the dispersion formula gives a non-physical index {n} at {lambda_nm} nm (must be finite and > 0)")]
+    #[error(
+        "wavelength {lambda_nm} nm is outside the validity range {min_nm}–{max_nm} nm of the dispersion formula"
+    )]
+    OutOfRange {
+        lambda_nm: f64,
+        min_nm: f64,
+        max_nm: f64,
+    },
+    #[error(
+        "the dispersion formula gives a non-physical index {n} at {lambda_nm} nm (must be finite and > 0)"
+    )]
     NonPhysical { n: f64, lambda_nm: f64 },
 }
 

@@ -80,7 +80,10 @@ pub enum PathError {
     #[error("the exit direction does not match the far-field direction")]
     DirectionMismatch,
     #[error("no convergence: landing error {landing_error_m:e} m after {iterations} iterations")]
-    NotConverged { landing_error_m: f64, iterations: usize },
+    NotConverged {
+        landing_error_m: f64,
+        iterations: usize,
+    },
     #[error("surface {surface} is opaque and cannot be an event")]
     OpaqueEvent { surface: usize },
 }
@@ -144,7 +147,11 @@ struct Geometry {
 }
 
 /// The surface's optics or an error if it is opaque.
-fn surface_optics(optics: &SceneOptics, event: usize, surface: usize) -> Result<SurfaceOptics, PathError> {
+fn surface_optics(
+    optics: &SceneOptics,
+    event: usize,
+    surface: usize,
+) -> Result<SurfaceOptics, PathError> {
     let _ = event;
     optics.surfaces[surface].ok_or(PathError::OpaqueEvent { surface })
 }
@@ -177,10 +184,10 @@ fn trace_planes(
         let x = o + t * d;
         let normal = surf.plane.normal;
         let cos_i = d.dot(normal).abs().min(1.0);
-        let (n1, n2) = indices_for(so, normal, d);
+        let (n1, n2) = indices_for(so, normal, d, n);
         let mirror = matches!(so, SurfaceOptics::IdealMirror);
         let splitter = matches!(so, SurfaceOptics::Splitter { .. });
-        if !mirror && n1 != n {
+        if n1 != n {
             return Err(PathError::MediumMismatch { event: k });
         }
         let (d_new, n_new) = match ev.kind {
@@ -230,30 +237,61 @@ impl LaunchModel {
             Emitter::Point { position } => {
                 let g = guess_dir.normalize();
                 let e1 = g.any_orthonormal_vector();
-                LaunchModel { emitter, g, e1, e2: g.cross(e1), base: position }
+                LaunchModel {
+                    emitter,
+                    g,
+                    e1,
+                    e2: g.cross(e1),
+                    base: position,
+                }
             }
             Emitter::Line { point, axis } => {
                 let a = axis.normalize();
                 let gp = guess_dir - guess_dir.dot(a) * a;
-                let g = if gp.length() > 1e-12 { gp.normalize() } else { a.any_orthonormal_vector() };
+                let g = if gp.length() > 1e-12 {
+                    gp.normalize()
+                } else {
+                    a.any_orthonormal_vector()
+                };
                 // Origin nearest to the guess origin along the axis.
                 let base = point + (guess_origin - point).dot(a) * a;
-                LaunchModel { emitter, g, e1: a, e2: a.cross(g), base }
+                LaunchModel {
+                    emitter,
+                    g,
+                    e1: a,
+                    e2: a.cross(g),
+                    base,
+                }
             }
-            Emitter::PlaneWave { direction, reference_point } => {
+            Emitter::PlaneWave {
+                direction,
+                reference_point,
+            } => {
                 let g = direction.normalize();
                 let e1 = g.any_orthonormal_vector();
                 // Start on the reference plane, on the line through the guess origin.
                 let base = guess_origin - (guess_origin - reference_point).dot(g) * g;
-                LaunchModel { emitter, g, e1, e2: g.cross(e1), base }
+                LaunchModel {
+                    emitter,
+                    g,
+                    e1,
+                    e2: g.cross(e1),
+                    base,
+                }
             }
         }
     }
 
     fn launch(&self, p: [f64; 2]) -> (DVec3, DVec3) {
         match self.emitter {
-            Emitter::Point { .. } => (self.base, (self.g + p[0] * self.e1 + p[1] * self.e2).normalize()),
-            Emitter::Line { .. } => (self.base + p[0] * self.e1, (self.g + p[1] * self.e2).normalize()),
+            Emitter::Point { .. } => (
+                self.base,
+                (self.g + p[0] * self.e1 + p[1] * self.e2).normalize(),
+            ),
+            Emitter::Line { .. } => (
+                self.base + p[0] * self.e1,
+                (self.g + p[1] * self.e2).normalize(),
+            ),
             Emitter::PlaneWave { .. } => (self.base + p[0] * self.e1 + p[1] * self.e2, self.g),
         }
     }
@@ -286,11 +324,7 @@ fn unfolded_target(scene: &Scene, seq: &[Event], p: DVec3) -> DVec3 {
     })
 }
 
-fn residual(
-    g: &Geometry,
-    target: &Target,
-    frame: (DVec3, DVec3, DVec3),
-) -> Option<[f64; 2]> {
+fn residual(g: &Geometry, target: &Target, frame: (DVec3, DVec3, DVec3)) -> Option<[f64; 2]> {
     let (o, d) = (*g.points.last()?, *g.dirs.last()?);
     let (dref, f1, f2) = frame;
     match target {
@@ -348,12 +382,21 @@ pub fn solve(
     let anchor = match emitter {
         Emitter::Point { position } => position,
         Emitter::Line { point, .. } => point,
-        Emitter::PlaneWave { reference_point, .. } => reference_point,
+        Emitter::PlaneWave {
+            reference_point, ..
+        } => reference_point,
     };
     let scale = scene_scale(scene, anchor, &target);
 
     // Plane wave into the far field: every launch is equivalent; trace from the reference point.
-    if let (Emitter::PlaneWave { direction, reference_point }, Target::Direction { dir, .. }) = (emitter, target) {
+    if let (
+        Emitter::PlaneWave {
+            direction,
+            reference_point,
+        },
+        Target::Direction { dir, .. },
+    ) = (emitter, target)
+    {
         let g = trace_planes(scene, optics, reference_point, direction.normalize(), seq)?;
         let d_f = *g.dirs.last().unwrap();
         let err = d_f.cross(dir.normalize()).length();
@@ -378,6 +421,23 @@ pub fn solve(
             (d, anchor)
         }
     };
+    // The image method ignores refraction: where that guess is totally reflected (e.g. a source
+    // inside glass looking out at a shallow angle), steepen it toward the first event's
+    // normal, halving the tangential part until the sequence can be traced.
+    let mut guess_dir = guess_dir;
+    if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) = (seq.first(), emitter) {
+        let n = scene.surfaces[first.surface].plane.normal;
+        let (gn, gt) = (guess_dir.dot(n) * n, guess_dir - guess_dir.dot(n) * n);
+        for k in 0..64 {
+            let g = gn + 0.5f64.powi(k) * gt;
+            let m = LaunchModel::new(emitter, g, guess_origin);
+            let (o, d) = m.launch([0.0, 0.0]);
+            if trace_planes(scene, optics, o, d, seq).is_ok() {
+                guess_dir = g;
+                break;
+            }
+        }
+    }
     let model = LaunchModel::new(emitter, guess_dir, guess_origin);
     let trace = |p: [f64; 2]| {
         let (o, d) = model.launch(p);
@@ -417,7 +477,9 @@ pub fn solve(
     while norm2(r) > tol && iterations < opts.max_iterations {
         iterations += 1;
         let Some(j) = jacobian(x) else { break };
-        let Some(delta) = solve2(j, [-r[0], -r[1]]) else { break };
+        let Some(delta) = solve2(j, [-r[0], -r[1]]) else {
+            break;
+        };
         // Damped step: halve until the residual decreases.
         let mut lambda = 1.0;
         let mut improved = false;
@@ -439,11 +501,17 @@ pub fn solve(
     }
     let landing_error = norm2(r);
     if landing_error > tol.max(opts.landing_tolerance * scale) {
-        return Err(PathError::NotConverged { landing_error_m: landing_error, iterations });
+        return Err(PathError::NotConverged {
+            landing_error_m: landing_error,
+            iterations,
+        });
     }
     let mut g = trace(x)?;
     let spreading = if opts.spreading {
-        let j = jacobian(x).ok_or(PathError::NotConverged { landing_error_m: landing_error, iterations })?;
+        let j = jacobian(x).ok_or(PathError::NotConverged {
+            landing_error_m: landing_error,
+            iterations,
+        })?;
         let det = (j[0][0] * j[1][1] - j[0][1] * j[1][0]).abs();
         let d_f = *g.dirs.last().unwrap();
         let area = det * d_f.dot(frame.0).abs();
@@ -477,16 +545,27 @@ fn finish(
     // Each event point must lie on its surface.
     for (k, ev) in seq.iter().enumerate() {
         if !scene.surfaces[ev.surface].interacts(g.points[k + 1]) {
-            return Err(PathError::OutOfExtent { event: k, surface: ev.surface });
+            return Err(PathError::OutOfExtent {
+                event: k,
+                surface: ev.surface,
+            });
         }
     }
     // No segment may cross a blocker or an unlisted interacting surface.
     let far = matches!(target, Target::Direction { .. });
-    let n_seg = if far { g.points.len() } else { g.points.len() - 1 };
+    let n_seg = if far {
+        g.points.len()
+    } else {
+        g.points.len() - 1
+    };
     for i in 0..n_seg {
         let a = g.points[i];
         let d = g.dirs[i];
-        let len = if i + 1 < g.points.len() { (g.points[i + 1] - a).length() } else { f64::INFINITY };
+        let len = if i + 1 < g.points.len() {
+            (g.points[i + 1] - a).length()
+        } else {
+            f64::INFINITY
+        };
         let skip = |j: usize| {
             (i >= 1 && seq[i - 1].surface == j) || (i < seq.len() && seq[i].surface == j)
         };
@@ -499,7 +578,10 @@ fn finish(
                 if t > eps && t < len - eps {
                     let x = a + t * d;
                     if surf.blocks(x) || surf.interacts(x) {
-                        return Err(PathError::Blocked { segment: i, surface: j });
+                        return Err(PathError::Blocked {
+                            segment: i,
+                            surface: j,
+                        });
                     }
                 }
             }
@@ -510,7 +592,11 @@ fn finish(
         .sum();
     if let Target::Direction { reference, .. } = target {
         // To the far-field wavefront through `reference`: −n·d·(X_exit − reference).
-        let (x, d, n) = (*g.points.last().unwrap(), *g.dirs.last().unwrap(), *g.indices.last().unwrap());
+        let (x, d, n) = (
+            *g.points.last().unwrap(),
+            *g.dirs.last().unwrap(),
+            *g.indices.last().unwrap(),
+        );
         optical_path_m -= n * d.dot(x - *reference);
     }
     Ok(SolvedPath {
@@ -538,7 +624,10 @@ pub struct EnumerationLimits {
 
 impl Default for EnumerationLimits {
     fn default() -> Self {
-        EnumerationLimits { max_internal_reflections: 1, max_events: 8 }
+        EnumerationLimits {
+            max_internal_reflections: 1,
+            max_events: 8,
+        }
     }
 }
 
@@ -563,7 +652,10 @@ pub fn discover_sequences(
                 let o = point + (p - point).dot(a) * a;
                 (o, (p - o).normalize())
             }
-            Emitter::PlaneWave { direction, reference_point } => {
+            Emitter::PlaneWave {
+                direction,
+                reference_point,
+            } => {
                 let d = direction.normalize();
                 (p - (p - reference_point).dot(d) * d, d)
             }
@@ -572,7 +664,18 @@ pub fn discover_sequences(
             continue;
         }
         let mut seq = Vec::new();
-        explore(scene, optics, o, d, optics.ambient_index, None, 0, &mut seq, limits, &mut found);
+        explore(
+            scene,
+            optics,
+            o,
+            d,
+            optics.ambient_index,
+            None,
+            0,
+            &mut seq,
+            limits,
+            &mut found,
+        );
     }
     found.into_iter().collect()
 }
@@ -620,18 +723,46 @@ fn explore(
         optics: so,
         coherence: scene.surfaces[j].coherence(),
     };
-    let (n1, n2) = interaction::indices_for(so, normal, d);
+    let (n1, n2) = interaction::indices_for(so, normal, d, n);
     let is_internal = n != optics.ambient_index;
     if !is_internal || internal < limits.max_internal_reflections {
-        seq.push(Event { surface: j, kind: EventKind::Reflect });
+        seq.push(Event {
+            surface: j,
+            kind: EventKind::Reflect,
+        });
         let inc = usize::from(is_internal);
-        explore(scene, optics, x, fresnel::reflect(d, normal), n, Some(j), internal + inc, seq, limits, found);
+        explore(
+            scene,
+            optics,
+            x,
+            fresnel::reflect(d, normal),
+            n,
+            Some(j),
+            internal + inc,
+            seq,
+            limits,
+            found,
+        );
         seq.pop();
     }
     if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics {
         if let Some(d_t) = fresnel::refract(d, normal, n1, n2) {
-            seq.push(Event { surface: j, kind: EventKind::Refract });
-            explore(scene, optics, x, d_t, n2, Some(j), internal, seq, limits, found);
+            seq.push(Event {
+                surface: j,
+                kind: EventKind::Refract,
+            });
+            explore(
+                scene,
+                optics,
+                x,
+                d_t,
+                n2,
+                Some(j),
+                internal,
+                seq,
+                limits,
+                found,
+            );
             seq.pop();
         }
     }

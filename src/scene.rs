@@ -134,7 +134,13 @@ impl Scene {
     }
 
     /// Add an unbounded interface; returns its index.
-    pub fn add_interface(&mut self, name: &str, plane: Plane, front: Medium, back: Medium) -> usize {
+    pub fn add_interface(
+        &mut self,
+        name: &str,
+        plane: Plane,
+        front: Medium,
+        back: Medium,
+    ) -> usize {
         self.surfaces.push(Surface {
             name: name.into(),
             plane,

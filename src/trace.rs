@@ -5,7 +5,9 @@
 use crate::accumulate::{Accumulator, Contribution};
 use crate::fidelity::{Fidelity, SceneNeeds};
 use crate::interaction::{CoefficientModel, InterfaceHit, interact};
-use crate::path::{self, EnumerationLimits, EventKind, PathError, Sequence, SolveOptions, SolvedPath, Target};
+use crate::path::{
+    self, EnumerationLimits, EventKind, PathError, Sequence, SolveOptions, SolvedPath, Target,
+};
 use crate::ray::{INCOHERENT, LedgerEntry, Ray};
 use crate::scene::{Scene, SceneOptics};
 use crate::source::Channel;
@@ -36,7 +38,12 @@ pub struct Plan {
 
 /// Discover the sequences of every source with probe rays toward `probe_targets` (typically the
 /// detector's corners and centre) and toward every surface and its mirror images.
-pub fn plan(scene: &Scene, optics: &SceneOptics, probe_targets: &[DVec3], limits: &EnumerationLimits) -> Plan {
+pub fn plan(
+    scene: &Scene,
+    optics: &SceneOptics,
+    probe_targets: &[DVec3],
+    limits: &EnumerationLimits,
+) -> Plan {
     let mut targets: Vec<DVec3> = probe_targets.to_vec();
     for surf in &scene.surfaces {
         targets.push(surf.plane.point);
@@ -109,7 +116,8 @@ pub fn propagate(
             surface: ev.surface,
             point: path.points[k + 1],
             normal: surf.plane.normal,
-            optics: optics.surfaces[ev.surface].expect("solved paths only meet non-opaque surfaces"),
+            optics: optics.surfaces[ev.surface]
+                .expect("solved paths only meet non-opaque surfaces"),
             coherence: surf.coherence(),
         };
         let children = interact(&ray, &hit, model);
@@ -136,7 +144,9 @@ pub fn propagate(
     // coherence length loses coherence.
     if ray.optical_path_m > coherence_length_m && ray.coherence_id != INCOHERENT {
         ray.coherence_id = INCOHERENT;
-        ray.ledger.entries.push(LedgerEntry::CoherenceLost { surface: None });
+        ray.ledger
+            .entries
+            .push(LedgerEntry::CoherenceLost { surface: None });
     }
     ray
 }
@@ -156,8 +166,24 @@ pub fn arrivals(
             match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
                 Ok(p) => {
                     for ch in src.channels() {
-                        let v = propagate(scene, optics, &ch, src.coherence_length_m, &p, target, CoefficientModel::Vector);
-                        let r = propagate(scene, optics, &ch, src.coherence_length_m, &p, target, CoefficientModel::PaperRules);
+                        let v = propagate(
+                            scene,
+                            optics,
+                            &ch,
+                            src.coherence_length_m,
+                            &p,
+                            target,
+                            CoefficientModel::Vector,
+                        );
+                        let r = propagate(
+                            scene,
+                            optics,
+                            &ch,
+                            src.coherence_length_m,
+                            &p,
+                            target,
+                            CoefficientModel::PaperRules,
+                        );
                         found.push(Arrival {
                             source: si,
                             channel: ch,
@@ -178,13 +204,20 @@ pub fn arrivals(
     (found, failed)
 }
 
-/// The accumulation-core contribution of an arrival at a rung of the ladder.
-pub fn contribution(a: &Arrival, level: Fidelity) -> Contribution {
+/// The accumulation-core contribution of an arrival at a rung of the ladder, with its path
+/// phase measured from the optical path `reference_m` (m): path differences are formed in
+/// metres before dividing by λ, so metre-long paths keep their phase differences to ~1e-17 m.
+pub fn contribution_from(a: &Arrival, level: Fidelity, reference_m: f64) -> Contribution {
     let v = &a.vector;
+    let cycles = |r: &Ray| (r.optical_path_m - reference_m) / r.wavelength_m;
     let scalar = |extra_cycles: f64| Contribution {
         coherence_id: v.coherence_id,
-        phase_cycles: v.phase_cycles() + extra_cycles,
-        field: [Complex64::from(v.intensity().sqrt()), Complex64::default(), Complex64::default()],
+        phase_cycles: cycles(v) + extra_cycles,
+        field: [
+            Complex64::from(v.intensity().sqrt()),
+            Complex64::default(),
+            Complex64::default(),
+        ],
     };
     match level {
         Fidelity::Incoherent => Contribution {
@@ -195,22 +228,37 @@ pub fn contribution(a: &Arrival, level: Fidelity) -> Contribution {
         Fidelity::ScalarJump => scalar(0.5 * a.path.denser_reflections as f64),
         Fidelity::PaperRules => Contribution {
             coherence_id: a.paper.coherence_id,
-            phase_cycles: a.paper.phase_cycles(),
+            phase_cycles: cycles(&a.paper),
             field: a.paper.field(),
         },
         Fidelity::Vector => Contribution {
             coherence_id: v.coherence_id,
-            phase_cycles: v.phase_cycles(),
+            phase_cycles: cycles(v),
             field: v.field(),
         },
     }
 }
 
+/// [`contribution_from`] with the absolute optical path (phase referred to the source).
+pub fn contribution(a: &Arrival, level: Fidelity) -> Contribution {
+    contribution_from(a, level, 0.0)
+}
+
+/// The contributions of all arrivals at one point, phases referred to the first arrival's
+/// optical path (a common phase does not change any intensity).
+pub fn contributions(arrivals: &[Arrival], level: Fidelity) -> Vec<Contribution> {
+    let reference_m = arrivals.first().map_or(0.0, |a| a.vector.optical_path_m);
+    arrivals
+        .iter()
+        .map(|a| contribution_from(a, level, reference_m))
+        .collect()
+}
+
 /// Intensity of a set of arrivals at a rung of the ladder.
 pub fn intensity(arrivals: &[Arrival], level: Fidelity) -> f64 {
     let mut acc = Accumulator::new();
-    for a in arrivals {
-        acc.add(&contribution(a, level));
+    for c in contributions(arrivals, level) {
+        acc.add(&c);
     }
     acc.intensity()
 }

@@ -38,10 +38,19 @@ impl Arm {
 
     /// Field (without path phase) arriving at `p` for a launch field given as a function of
     /// the launch direction; the launch direction is the arrival direction mirrored back.
-    pub fn field(&self, src: DVec3, p: DVec3, launch_field: impl Fn(DVec3) -> DVec3) -> (DVec3, f64) {
+    pub fn field(
+        &self,
+        src: DVec3,
+        p: DVec3,
+        launch_field: impl Fn(DVec3) -> DVec3,
+    ) -> (DVec3, f64) {
         let vs = self.virtual_source(src);
         let d_arrive = (p - vs).normalize();
-        let d_launch = self.reflections.iter().rev().fold(d_arrive, |d, r| mirror(d, r.normal));
+        let d_launch = self
+            .reflections
+            .iter()
+            .rev()
+            .fold(d_arrive, |d, r| mirror(d, r.normal));
         let mut e = launch_field(d_launch);
         let mut amp = self.transmission;
         for r in &self.reflections {
@@ -54,7 +63,13 @@ impl Arm {
 
 /// Intensity at `p` for one linear channel (launch field direction from `launch_field`,
 /// unit intensity), arms mutually coherent, spreading off: |Σ_arms E_a e^{i2π r_a/λ}|².
-pub fn intensity(arms: &[Arm], src: DVec3, p: DVec3, lambda_m: f64, launch_field: impl Fn(DVec3) -> DVec3 + Copy) -> f64 {
+pub fn intensity(
+    arms: &[Arm],
+    src: DVec3,
+    p: DVec3,
+    lambda_m: f64,
+    launch_field: impl Fn(DVec3) -> DVec3 + Copy,
+) -> f64 {
     let mut sum = [Complex64::default(); 3];
     for arm in arms {
         let (e, r) = arm.field(src, p, launch_field);

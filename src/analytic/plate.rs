@@ -101,9 +101,19 @@ impl Film {
 
     /// The reflection amplitude summed over the first `orders` reflected beams only: order 0 is
     /// r12, order m ≥ 1 is t12 t21 r23 (r21 r23)^{m−1} e^{imβ} (m round trips).
-    pub fn r_truncated(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, orders: usize) -> Complex64 {
+    pub fn r_truncated(
+        &self,
+        cos_theta_1: f64,
+        lambda_m: f64,
+        pol: Pol,
+        orders: usize,
+    ) -> Complex64 {
         let a = self.terms(cos_theta_1, lambda_m, pol);
-        let mut sum = if orders > 0 { a.r12 } else { Complex64::default() };
+        let mut sum = if orders > 0 {
+            a.r12
+        } else {
+            Complex64::default()
+        };
         let mut term = a.t12 * a.t21 * a.r23 * Complex64::from_polar(1.0, a.beta);
         let q = a.r21 * a.r23 * Complex64::from_polar(1.0, a.beta);
         for _ in 1..orders {
@@ -127,7 +137,13 @@ impl Film {
 
     /// The number of reflected orders needed so that the amplitude tail bound is ≤ `epsilon`:
     /// cost grows like log(1/ε)/log(1/|r21 r23|).
-    pub fn orders_for_bound(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, epsilon: f64) -> usize {
+    pub fn orders_for_bound(
+        &self,
+        cos_theta_1: f64,
+        lambda_m: f64,
+        pol: Pol,
+        epsilon: f64,
+    ) -> usize {
         let mut n = 1;
         while self.r_tail_bound(cos_theta_1, lambda_m, pol, n) > epsilon && n < 100_000 {
             n += 1;

@@ -40,9 +40,15 @@ pub fn rhomb_circularity(n_glass: f64, theta: f64, k: usize) -> f64 {
 
 /// Amplitude factors (s, p) through a TIR prism: normal-incidence entry (t12), one TIR at θ,
 /// normal-incidence exit (t21). Complex, in the crate's frame.
-pub fn prism_amplitudes(n_glass: f64, theta: f64) -> (num_complex::Complex64, num_complex::Complex64) {
+pub fn prism_amplitudes(
+    n_glass: f64,
+    theta: f64,
+) -> (num_complex::Complex64, num_complex::Complex64) {
     let t_in = fresnel(1.0, n_glass, 1.0);
     let tir = fresnel(n_glass, 1.0, theta.cos());
     let t_out = fresnel(n_glass, 1.0, 1.0);
-    (t_in.t_s * tir.r_s * t_out.t_s, t_in.t_p * tir.r_p * t_out.t_p)
+    (
+        t_in.t_s * tir.r_s * t_out.t_s,
+        t_in.t_p * tir.r_p * t_out.t_p,
+    )
 }

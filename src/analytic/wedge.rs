@@ -18,20 +18,21 @@ pub fn fringe_spacing_small_angle(lambda_m: f64, n: f64, alpha_rad: f64) -> f64 
 
 /// The wedge scene of the case library: top face z = 0 (index n above = 1), bottom face through
 /// (0, 0, −t0) with normal (sin α, 0, cos α), same ambient index 1 below; plane wave along −z
-/// with phase 0 at z = h; screen points (x, y, h). s-polarized (field along y).
+/// with phase 0 at z = h_src; screen points (x, y, h_obs). s-polarized (field along y).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wedge {
     pub n: f64,
     pub alpha_rad: f64,
     pub t0_m: f64,
-    pub h_m: f64,
+    pub h_src_m: f64,
+    pub h_obs_m: f64,
 }
 
 impl Wedge {
-    /// Optical path and s amplitude of the top reflection at screen x: 2h, r12(0).
+    /// Optical path and s amplitude of the top reflection at screen x: h_src + h_obs, r12(0).
     fn top(&self) -> (f64, f64) {
         let f = fresnel(1.0, self.n, 1.0);
-        (2.0 * self.h_m, f.r_s.re)
+        (self.h_src_m + self.h_obs_m, f.r_s.re)
     }
 
     /// Optical path and s amplitude of the bottom reflection arriving at screen x.
@@ -42,10 +43,10 @@ impl Wedge {
     fn bottom(&self, x_m: f64) -> (f64, f64) {
         let (a, n) = (self.alpha_rad, self.n);
         let psi = (n * (2.0 * a).sin()).asin();
-        let x_e = x_m - self.h_m * psi.tan();
+        let x_e = x_m - self.h_obs_m * psi.tan();
         let x_i = (x_e - self.t0_m * (2.0 * a).tan()) / (1.0 + a.tan() * (2.0 * a).tan());
         let depth = self.t0_m + x_i * a.tan();
-        let op = self.h_m + n * depth + n * depth / (2.0 * a).cos() + self.h_m / psi.cos();
+        let op = self.h_src_m + n * depth + n * depth / (2.0 * a).cos() + self.h_obs_m / psi.cos();
         let t12 = fresnel(1.0, n, 1.0).t_s.re;
         let r23 = fresnel(n, 1.0, a.cos()).r_s.re;
         let t21 = fresnel(n, 1.0, (2.0 * a).cos()).t_s.re;

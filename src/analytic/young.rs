@@ -13,7 +13,14 @@ use glam::DVec3;
 /// `I = 2 + 2 cos α cos δ`. Unpolarized: `I = 2 + (1 + cos α) cos δ`, δ = 2π(r1 − r2)/λ (P10).
 /// `axis_fraction` is the intensity fraction in the axis-polarized channel (1 for linear
 /// polarization along the axis, 1/2 for unpolarized).
-pub fn exact_line_sources(s1: DVec3, s2: DVec3, axis: DVec3, p: DVec3, lambda_m: f64, axis_fraction: f64) -> f64 {
+pub fn exact_line_sources(
+    s1: DVec3,
+    s2: DVec3,
+    axis: DVec3,
+    p: DVec3,
+    lambda_m: f64,
+    axis_fraction: f64,
+) -> f64 {
     let a = axis.normalize();
     let perp = |s: DVec3| {
         let v = p - s;
@@ -23,7 +30,8 @@ pub fn exact_line_sources(s1: DVec3, s2: DVec3, axis: DVec3, p: DVec3, lambda_m:
     let (r1, r2) = (v1.length(), v2.length());
     let cos_delta = super::path_phasor(r1 - r2, lambda_m).re;
     let cos_alpha = v1.dot(v2) / (r1 * r2);
-    axis_fraction * (2.0 + 2.0 * cos_delta) + (1.0 - axis_fraction) * (2.0 + 2.0 * cos_alpha * cos_delta)
+    axis_fraction * (2.0 + 2.0 * cos_delta)
+        + (1.0 - axis_fraction) * (2.0 + 2.0 * cos_alpha * cos_delta)
 }
 
 /// Paraxial Young intensity `2(1 + cos(2π d y/(λ l)))` (paper eq. 4 with δ ≈ 2π d y/(λ l)).

@@ -1,0 +1,680 @@
+//! Evaluating a case's closed-form references at a probe point. Each reference reads its
+//! parameters (positions, indices, thicknesses, polarization) from the built scene, so the
+//! scene and its reference cannot disagree; each says clearly when a scene does not fit it.
+
+use super::build::{Built, plane_wave};
+use super::spec::{BeamSpec, ReferenceModel};
+use crate::analytic::{self, michelson, plate::Pol};
+use crate::fresnel;
+use crate::path::Target;
+use crate::scene::SurfaceKind;
+use crate::source::{Channel, Emitter, Source};
+use glam::DVec3;
+use num_complex::Complex64;
+
+/// How a reference is compared with the trace.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum MetricKind {
+    /// Intensity (or R, T) at every probe point, weighted over the spectrum; deviations are
+    /// relative to the largest reference value of the profile.
+    Intensity,
+    /// Fringe spacing at the probe centre (m), from the traced optical-path difference.
+    FringeSpacing,
+    /// Retardance arg(E_p) − arg(E_s) (rad) at every probe point.
+    Retardance,
+    /// Two-beam fringe visibility at every probe point.
+    Visibility,
+}
+
+pub fn kind(model: &ReferenceModel) -> MetricKind {
+    match model {
+        ReferenceModel::YoungSpacing { .. } | ReferenceModel::WedgeSpacing { .. } => {
+            MetricKind::FringeSpacing
+        }
+        ReferenceModel::RhombRetardance { .. } => MetricKind::Retardance,
+        ReferenceModel::LloydVisibility {} => MetricKind::Visibility,
+        _ => MetricKind::Intensity,
+    }
+}
+
+/// Short name of a reference model for tables (the serde tag).
+pub fn name(model: &ReferenceModel) -> String {
+    serde_json::to_value(model)
+        .ok()
+        .and_then(|v| v.as_object().and_then(|o| o.keys().next().cloned()))
+        .unwrap_or_else(|| "reference".into())
+}
+
+fn index(built: &Built, medium: &str, lambda_m: f64) -> Result<f64, String> {
+    built
+        .medium(medium)?
+        .index(lambda_m)
+        .map_err(|e| e.to_string())
+}
+
+fn line_sources(built: &Built) -> Result<Vec<(&Source, DVec3, DVec3)>, String> {
+    let v: Vec<_> = built
+        .scene
+        .sources
+        .iter()
+        .filter_map(|s| match s.emitter {
+            Emitter::Line { point, axis } => Some((s, point, axis)),
+            _ => None,
+        })
+        .collect();
+    if v.is_empty() {
+        return Err("this reference needs line sources".into());
+    }
+    Ok(v)
+}
+
+/// Fraction of a source's intensity polarized along `axis` (1, 0 or 1/2), if its channels are
+/// along and perpendicular to `axis`.
+fn axis_fraction(src: &Source, axis: DVec3) -> Result<f64, String> {
+    let chans = src.channels();
+    let mut along = 0.0;
+    for ch in &chans {
+        let r = ch.reference.normalize();
+        if r.cross(axis).length() > 1e-12 {
+            return Err(format!(
+                "source {:?}: its polarization reference must be the slit axis",
+                src.name
+            ));
+        }
+        let c = ch.angle_rad.cos();
+        if (c.abs() - 1.0).abs() > 1e-12 && c.abs() > 1e-12 {
+            return Err(format!(
+                "source {:?}: polarization must be along or across the slit axis",
+                src.name
+            ));
+        }
+        along += ch.intensity * c * c;
+    }
+    Ok(along / src.intensity)
+}
+
+fn point(target: &Target) -> Result<DVec3, String> {
+    match target {
+        Target::Point(p) => Ok(*p),
+        Target::Direction { .. } => {
+            Err("this reference needs screen points, not a far-field direction".into())
+        }
+    }
+}
+
+/// The reference's value at one probe point and wavelength (Intensity, Retardance and
+/// Visibility kinds; spacing references are evaluated by [`spacing`]).
+pub fn value(
+    model: &ReferenceModel,
+    built: &Built,
+    target: &Target,
+    lambda_m: f64,
+    spreading: bool,
+) -> Result<f64, String> {
+    let scene = &built.scene;
+    match model {
+        ReferenceModel::YoungExact {} => {
+            let ls = line_sources(built)?;
+            if ls.len() != 2 || ls[0].0.intensity != ls[1].0.intensity {
+                return Err("young_exact needs exactly two line sources of equal intensity".into());
+            }
+            let f = axis_fraction(ls[0].0, ls[0].2)?;
+            let p = point(target)?;
+            Ok(ls[0].0.intensity
+                * analytic::young::exact_line_sources(ls[0].1, ls[1].1, ls[0].2, p, lambda_m, f))
+        }
+        ReferenceModel::YoungParaxial {} => {
+            let ls = line_sources(built)?;
+            if ls.len() != 2 {
+                return Err("young_paraxial needs exactly two line sources".into());
+            }
+            let (s1, s2, axis) = (ls[0].1, ls[1].1, ls[0].2);
+            let sep = s1 - s2;
+            let d = sep.length();
+            let mid = 0.5 * (s1 + s2);
+            let p = point(target)?;
+            let across = sep / d;
+            let forward = axis.cross(across).normalize();
+            let rel = p - mid;
+            Ok(ls[0].0.intensity
+                * analytic::young::paraxial(d, rel.dot(forward).abs(), rel.dot(across), lambda_m))
+        }
+        ReferenceModel::Lloyd {} | ReferenceModel::LloydVisibility {} => {
+            let ls = line_sources(built)?;
+            let (src, s, axis) = ls[0];
+            if axis_fraction(src, axis)? != 1.0 {
+                return Err(
+                    "lloyd needs a line source polarized along its axis (s polarization)".into(),
+                );
+            }
+            let mirror = scene
+                .surfaces
+                .first()
+                .ok_or("lloyd needs the mirror as the first surface")?;
+            let SurfaceKind::Interface { front, back, .. } = &mirror.kind else {
+                return Err("lloyd's first surface must be a dielectric interface".into());
+            };
+            let h = mirror.plane.signed_distance(s);
+            let (n1, n2) = if h > 0.0 {
+                (front, back)
+            } else {
+                (back, front)
+            };
+            let (n1, n2) = (
+                n1.index(lambda_m).map_err(|e| e.to_string())?,
+                n2.index(lambda_m).map_err(|e| e.to_string())?,
+            );
+            let p = point(target)?;
+            let nrm = mirror.plane.normal * h.signum();
+            let y = (p - mirror.plane.point).dot(nrm);
+            let mut horiz = p - s;
+            horiz -= horiz.dot(nrm) * nrm + horiz.dot(axis) * axis;
+            let l = analytic::lloyd::Lloyd {
+                n1,
+                n2,
+                h_m: h.abs(),
+                l_m: horiz.length(),
+            };
+            Ok(match model {
+                ReferenceModel::Lloyd {} => src.intensity * l.intensity(y, lambda_m),
+                _ => l.visibility(y),
+            })
+        }
+        ReferenceModel::TwoBeamPlate { plate } => {
+            let (top, bottom) = (
+                built.surface(&format!("{plate}.top"))?,
+                built.surface(&format!("{plate}.bottom"))?,
+            );
+            let src = scene
+                .sources
+                .iter()
+                .find(|s| matches!(s.emitter, Emitter::Point { .. }))
+                .ok_or("two_beam_plate needs a point source")?;
+            let Emitter::Point { position: s } = src.emitter else {
+                unreachable!()
+            };
+            let (
+                SurfaceKind::Interface {
+                    front: above,
+                    back: glass,
+                    ..
+                },
+                SurfaceKind::Interface { back: below, .. },
+            ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
+            else {
+                return Err("two_beam_plate: the plate faces must be interfaces".into());
+            };
+            let n1 = above.index(lambda_m).map_err(|e| e.to_string())?;
+            if below.index(lambda_m).map_err(|e| e.to_string())? != n1 {
+                return Err(
+                    "two_beam_plate needs the same medium above and below the plate".into(),
+                );
+            }
+            let p = point(target)?;
+            let plane = &scene.surfaces[top].plane;
+            let nrm = plane.normal;
+            let mut horiz = p - s;
+            horiz -= horiz.dot(nrm) * nrm;
+            let Some(crate::source::Polarization::Unpolarized { reference }) =
+                Some(src.polarization)
+            else {
+                return Err("two_beam_plate needs an unpolarized source".into());
+            };
+            if reference.dot(horiz).abs() > 1e-9 * horiz.length()
+                || reference.dot(nrm).abs() > 1e-12
+            {
+                return Err("two_beam_plate: the source's polarization reference must be perpendicular to every plane of incidence (the probe must lie in one plane of incidence)".into());
+            }
+            let t = analytic::plate::TwoBeamPlate {
+                n1,
+                n2: glass.index(lambda_m).map_err(|e| e.to_string())?,
+                thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
+                    .dot(nrm),
+                h_src_m: plane.signed_distance(s),
+                h_obs_m: plane.signed_distance(p),
+            };
+            Ok(src.intensity * t.intensity_unpolarized(horiz.length(), lambda_m))
+        }
+        ReferenceModel::Airy {
+            film,
+            index_override,
+        } => airy(built, film, *index_override, target, lambda_m),
+        ReferenceModel::Wedge { wedge } => {
+            let (top, bottom) = (
+                built.surface(&format!("{wedge}.top"))?,
+                built.surface(&format!("{wedge}.bottom"))?,
+            );
+            let (tp, bp) = (&scene.surfaces[top].plane, &scene.surfaces[bottom].plane);
+            let SurfaceKind::Interface { back: glass, .. } = &scene.surfaces[top].kind else {
+                return Err("wedge faces must be interfaces".into());
+            };
+            let (d, reference) = plane_wave(scene).ok_or("wedge needs a plane-wave source")?;
+            if (d + tp.normal).length() > 1e-12 {
+                return Err(
+                    "wedge needs the plane wave at normal incidence on the top face".into(),
+                );
+            }
+            let alpha = crate::geometry::angle_between(tp.normal, bp.normal);
+            let hinge = tp.normal.cross(bp.normal).normalize();
+            let x_axis = hinge.cross(tp.normal);
+            let src = &scene.sources[0];
+            for ch in src.channels() {
+                if ch.field_direction(d).cross(hinge).length() > 1e-12 {
+                    return Err("wedge needs s polarization (field along the hinge axis)".into());
+                }
+            }
+            let p = point(target)?;
+            let w = analytic::wedge::Wedge {
+                n: glass.index(lambda_m).map_err(|e| e.to_string())?,
+                alpha_rad: alpha,
+                t0_m: -tp.signed_distance(bp.point),
+                h_src_m: tp.signed_distance(reference),
+                h_obs_m: tp.signed_distance(p),
+            };
+            let x = (p - tp.point).dot(x_axis);
+            Ok(src.intensity * w.intensity_s(x, lambda_m))
+        }
+        ReferenceModel::RhombRetardance {
+            glass,
+            tir_surface,
+            tir_count,
+        } => {
+            let (d, _) = plane_wave(scene).ok_or("rhomb_retardance needs a plane-wave source")?;
+            let n = built.surface(tir_surface)?;
+            let theta = d.dot(scene.surfaces[n].plane.normal).abs().acos();
+            let r =
+                analytic::tir::rhomb_retardance(index(built, glass, lambda_m)?, theta, *tir_count);
+            Ok(wrap(r))
+        }
+        ReferenceModel::PlaneWaveBeams { beams } => {
+            plane_wave_beams(built, beams, target, lambda_m)
+        }
+        ReferenceModel::Michelson { splitter, mirrors } => {
+            michelson_ref(built, splitter, mirrors, target, lambda_m)
+        }
+        ReferenceModel::IncoherentSum {} => {
+            let p = point(target)?;
+            let mut sum = 0.0;
+            for s in &scene.sources {
+                let Emitter::Point { position } = s.emitter else {
+                    return Err("incoherent_sum needs point sources".into());
+                };
+                let r2 = (p - position).length_squared();
+                sum += if spreading {
+                    s.intensity / r2
+                } else {
+                    s.intensity
+                };
+            }
+            Ok(sum)
+        }
+        ReferenceModel::CoherenceGaussian { plate, .. } | ReferenceModel::CoherenceP9 { plate } => {
+            Err(format!(
+                "{plate}: evaluated over the whole spectrum by coherence()"
+            ))
+        }
+        ReferenceModel::YoungSpacing { .. } | ReferenceModel::WedgeSpacing { .. } => {
+            Err("spacing references are evaluated by spacing()".into())
+        }
+    }
+}
+
+/// Wrap an angle to (−π, π].
+pub fn wrap(a: f64) -> f64 {
+    let t = std::f64::consts::TAU;
+    let w = a - t * (a / t).round();
+    if w <= -std::f64::consts::PI { w + t } else { w }
+}
+
+fn airy(
+    built: &Built,
+    film: &str,
+    index_override: Option<f64>,
+    target: &Target,
+    lambda_m: f64,
+) -> Result<f64, String> {
+    let scene = &built.scene;
+    let (top, bottom) = (
+        built.surface(&format!("{film}.top"))?,
+        built.surface(&format!("{film}.bottom"))?,
+    );
+    let (
+        SurfaceKind::Interface {
+            front: m1,
+            back: m2,
+            ..
+        },
+        SurfaceKind::Interface { back: m3, .. },
+    ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
+    else {
+        return Err("airy: the film faces must be interfaces".into());
+    };
+    let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
+    let nrm = scene.surfaces[top].plane.normal;
+    let f = analytic::plate::Film {
+        n1: ix(m1)?,
+        n2: index_override.map(Ok).unwrap_or_else(|| ix(m2))?,
+        n3: ix(m3)?,
+        thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
+            .dot(nrm),
+    };
+    let src = scene.sources.first().ok_or("airy needs a source")?;
+    let Emitter::PlaneWave { direction: d, .. } = src.emitter else {
+        return Err("airy needs a plane-wave source".into());
+    };
+    let Target::Direction { dir, .. } = target else {
+        return Err("airy needs a far-field observer".into());
+    };
+    let cos1 = d.dot(nrm).abs();
+    let reflected = dir.dot(nrm).signum() != d.dot(nrm).signum();
+    // Split each channel into s and p at the film (one plane of incidence for every beam).
+    let s = fresnel::s_direction(d, nrm, src.channels()[0].field_direction(d));
+    let p = d.cross(s);
+    let mut total = 0.0;
+    for ch in src.channels() {
+        let e = ch.field_direction(d);
+        let (fs, fp) = (e.dot(s).powi(2), e.dot(p).powi(2));
+        let (vs, vp) = if reflected {
+            (
+                f.reflectance(cos1, lambda_m, Pol::S),
+                f.reflectance(cos1, lambda_m, Pol::P),
+            )
+        } else {
+            (
+                f.transmittance(cos1, lambda_m, Pol::S),
+                f.transmittance(cos1, lambda_m, Pol::P),
+            )
+        };
+        total += ch.intensity * (fs * vs + fp * vp);
+    }
+    Ok(total)
+}
+
+/// The film of an Airy reference (for the bounce-count choice and the convergence report).
+pub fn airy_film(
+    built: &Built,
+    film: &str,
+    lambda_m: f64,
+) -> Result<(analytic::plate::Film, f64), String> {
+    let scene = &built.scene;
+    let (top, bottom) = (
+        built.surface(&format!("{film}.top"))?,
+        built.surface(&format!("{film}.bottom"))?,
+    );
+    let (
+        SurfaceKind::Interface {
+            front: m1,
+            back: m2,
+            ..
+        },
+        SurfaceKind::Interface { back: m3, .. },
+    ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
+    else {
+        return Err("the film faces must be interfaces".into());
+    };
+    let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
+    let nrm = scene.surfaces[top].plane.normal;
+    let (d, _) = plane_wave(scene).ok_or("needs a plane-wave source")?;
+    Ok((
+        analytic::plate::Film {
+            n1: ix(m1)?,
+            n2: ix(m2)?,
+            n3: ix(m3)?,
+            thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
+                .dot(nrm),
+        },
+        d.dot(nrm).abs(),
+    ))
+}
+
+/// Plane waves through planar faces: optical path by wavefront continuity,
+/// φ_k(x) = φ_{k−1}(Q_k) + n_k u_k·(x − Q_k) at each face through Q_k (tangential n·u is
+/// conserved), amplitudes by complex Fresnel products for s and p (one plane of incidence).
+fn plane_wave_beams(
+    built: &Built,
+    beams: &[BeamSpec],
+    target: &Target,
+    lambda_m: f64,
+) -> Result<f64, String> {
+    let scene = &built.scene;
+    // Sum per (coherence group, channel index).
+    let mut groups: Vec<((u64, usize), [Complex64; 3])> = Vec::new();
+    for b in beams {
+        let src = scene
+            .sources
+            .iter()
+            .find(|s| s.name == b.source)
+            .ok_or(format!("no source {:?}", b.source))?;
+        let Emitter::PlaneWave {
+            direction,
+            reference_point,
+        } = src.emitter
+        else {
+            return Err(format!("source {:?} must be a plane wave", b.source));
+        };
+        let mut u = direction;
+        let mut n = scene.ambient.index(lambda_m).map_err(|e| e.to_string())?;
+        let mut q = reference_point;
+        let mut op = 0.0;
+        let mut amp_s = Complex64::from(1.0);
+        let mut amp_p = Complex64::from(1.0);
+        let mut s_axis: Option<DVec3> = None;
+        for ev in &b.events {
+            let k = built.surface(&ev.surface)?;
+            let surf = &scene.surfaces[k];
+            let SurfaceKind::Interface { front, back, .. } = &surf.kind else {
+                return Err(format!(
+                    "surface {:?} must be a dielectric interface",
+                    ev.surface
+                ));
+            };
+            let nrm = surf.plane.normal;
+            let (n1, n2) = if u.dot(nrm) < 0.0 {
+                (front, back)
+            } else {
+                (back, front)
+            };
+            let (n1, n2) = (
+                n1.index(lambda_m).map_err(|e| e.to_string())?,
+                n2.index(lambda_m).map_err(|e| e.to_string())?,
+            );
+            if (n1 - n).abs() > 0.0 {
+                return Err(format!(
+                    "beam from {:?} reaches {:?} from the wrong medium",
+                    b.source, ev.surface
+                ));
+            }
+            let cos_i = u.dot(nrm).abs();
+            // One plane of incidence: every event's s is ± the first one. The coefficients are
+            // unchanged when s (and with it every p) flips, so one s serves all events.
+            let s = fresnel::s_direction(u, nrm, s_axis.unwrap_or(DVec3::Y));
+            match s_axis {
+                Some(prev) if prev.cross(s).length() > 1e-9 => {
+                    return Err(
+                        "plane_wave_beams needs every event in one plane of incidence".into(),
+                    );
+                }
+                Some(_) => {}
+                None => s_axis = Some(s),
+            }
+            let f = fresnel::fresnel(n1, n2, cos_i);
+            op += n * u.dot(surf.plane.point - q);
+            q = surf.plane.point;
+            if ev.reflect {
+                u = fresnel::reflect(u, nrm);
+                amp_s *= f.r_s;
+                amp_p *= f.r_p;
+            } else {
+                u = fresnel::refract(u, nrm, n1, n2)
+                    .ok_or(format!("TIR at {:?} on a refraction event", ev.surface))?;
+                amp_s *= f.t_s;
+                amp_p *= f.t_p;
+                n = n2;
+            }
+        }
+        op += match target {
+            Target::Point(x) => n * u.dot(*x - q),
+            Target::Direction { dir, reference } => {
+                if u.cross(*dir).length() > 1e-9 {
+                    continue; // this beam does not reach the far-field direction
+                }
+                n * u.dot(*reference - q)
+            }
+        };
+        let s = s_axis.unwrap_or_else(|| u.any_orthonormal_vector());
+        let ph = analytic::path_phasor(op, lambda_m);
+        for (ci, ch) in src.channels().iter().enumerate() {
+            let e0 = ch.field_direction(direction) * ch.intensity.sqrt();
+            let p0 = direction.cross(s);
+            let (a_s, a_p) = (e0.dot(s), e0.dot(p0));
+            let p_out = u.cross(s);
+            let e = [0, 1, 2].map(|k| (amp_s * a_s * s[k] + amp_p * a_p * p_out[k]) * ph);
+            let key = (src.coherence_group, ci);
+            match groups.iter_mut().find(|(g, _)| *g == key) {
+                Some((_, acc)) => (0..3).for_each(|k| acc[k] += e[k]),
+                None => groups.push((key, e)),
+            }
+        }
+    }
+    Ok(groups
+        .iter()
+        .map(|(_, e)| e.iter().map(|c| c.norm_sqr()).sum::<f64>())
+        .sum())
+}
+
+fn michelson_ref(
+    built: &Built,
+    splitter: &str,
+    mirrors: &[String; 2],
+    target: &Target,
+    lambda_m: f64,
+) -> Result<f64, String> {
+    let scene = &built.scene;
+    let bs = &scene.surfaces[built.surface(splitter)?];
+    let SurfaceKind::Splitter { reflectance, .. } = bs.kind else {
+        return Err(format!("{splitter:?} must be a splitter"));
+    };
+    let src = scene.sources.first().ok_or("michelson needs a source")?;
+    let Emitter::Point { position: s } = src.emitter else {
+        return Err("michelson needs a point source".into());
+    };
+    let p = point(target)?;
+    let side_src = bs.plane.signed_distance(s).signum();
+    let (r, t) = (reflectance.sqrt(), (1.0 - reflectance).sqrt());
+    // E_r = σ R_N(E_i): σ = −√R from the front, +√R from the back.
+    let sigma = |side: f64| if side > 0.0 { -r } else { r };
+    let mut arms = Vec::new();
+    for m in mirrors {
+        let mi = &scene.surfaces[built.surface(m)?];
+        let mirror = michelson::Reflection {
+            point: mi.plane.point,
+            normal: mi.plane.normal,
+            factor: -1.0,
+        };
+        let split = |side: f64| michelson::Reflection {
+            point: bs.plane.point,
+            normal: bs.plane.normal,
+            factor: sigma(side),
+        };
+        let side_m = bs.plane.signed_distance(mi.plane.point).signum();
+        arms.push(if side_m == side_src {
+            michelson::Arm {
+                reflections: vec![split(side_src), mirror],
+                transmission: t,
+            }
+        } else {
+            michelson::Arm {
+                reflections: vec![mirror, split(side_m)],
+                transmission: t,
+            }
+        });
+    }
+    Ok(src
+        .channels()
+        .iter()
+        .map(|ch: &Channel| {
+            ch.intensity * michelson::intensity(&arms, s, p, lambda_m, |d| ch.field_direction(d))
+        })
+        .sum())
+}
+
+/// The coherence references over the whole spectrum: plane wave at normal incidence on a
+/// plate, two beams (top reflection and one internal reflection) in the reflected far field.
+/// Returns (I1, I2, Δs, φ, Op1, Op2) pieces as the final intensity.
+pub fn coherence(
+    model: &ReferenceModel,
+    built: &Built,
+    target: &Target,
+    spectrum: &[(f64, f64)],
+    center_m: f64,
+    fwhm_m: Option<f64>,
+) -> Result<f64, String> {
+    let (plate, fwhm_m) = match model {
+        ReferenceModel::CoherenceGaussian {
+            plate,
+            fwhm_nm: Some(f),
+        } => {
+            if fwhm_m.is_some() {
+                return Err("coherence_gaussian: fwhm_nm is for monochromatic cases; this case's light already has a bandwidth".into());
+            }
+            (plate, Some(f * 1e-9))
+        }
+        ReferenceModel::CoherenceGaussian {
+            plate,
+            fwhm_nm: None,
+        } => (plate, fwhm_m),
+        ReferenceModel::CoherenceP9 { plate } => (plate, fwhm_m),
+        _ => return Err("not a coherence reference".into()),
+    };
+    let (film, cos1) = airy_film(built, plate, center_m)?;
+    if (cos1 - 1.0).abs() > 1e-12 {
+        return Err("coherence references need normal incidence".into());
+    }
+    // Normal incidence: the two beams' amplitudes are r12 and t12 r23 t21 for any polarization.
+    let f12 = fresnel::fresnel(film.n1, film.n2, 1.0);
+    let f23 = fresnel::fresnel(film.n2, film.n3, 1.0);
+    let f21 = fresnel::fresnel(film.n2, film.n1, 1.0);
+    let a1 = f12.r_s.re;
+    let a2 = (f12.t_s * f23.r_s * f21.t_s).re;
+    let ds = 2.0 * film.n2 * film.thickness_m;
+    let src = &built.scene.sources[0];
+    let i0 = src.intensity;
+    match model {
+        ReferenceModel::CoherenceGaussian { .. } => {
+            // Gaussian spectrum in k: ⟨cos(kΔs)⟩ = |γ(Δs)| cos(k0 Δs) exactly.
+            let fwhm = fwhm_m.ok_or("coherence_gaussian needs Gaussian light")?;
+            let gamma = analytic::coherence::gaussian_visibility(ds, center_m, fwhm);
+            let delta = std::f64::consts::TAU * ds / center_m;
+            Ok(i0 * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * gamma * delta.cos()))
+        }
+        _ => {
+            // P9: each ray keeps coherence while its own optical path (from the plane wave's
+            // reference plane to the far-field wavefront through the same point) is ≤ L.
+            let Target::Direction { reference, .. } = target else {
+                return Err("coherence_p9 needs a far-field observer".into());
+            };
+            let (d, r0) = plane_wave(&built.scene).ok_or("needs a plane wave")?;
+            let top = &built.scene.surfaces[built.surface(&format!("{plate}.top"))?].plane;
+            // Launched at r0, the ray meets the top face after h; the far-field projection
+            // adds −d_r·(X − reference) with X = r0 + h d (reference = r0 here).
+            let h = top
+                .intersect(r0, d)
+                .ok_or("the plane wave misses the plate")?;
+            let d_r = fresnel::reflect(d, top.normal);
+            let op1 = h - d_r.dot(r0 + h * d - *reference);
+            let op2 = op1 + ds;
+            let l = src.coherence_length_m;
+            let mut sum = 0.0;
+            for &(lam, w) in spectrum {
+                let coherent = op1 <= l && op2 <= l;
+                let c = if coherent {
+                    2.0 * a1 * a2 * (std::f64::consts::TAU * ds / lam).cos()
+                } else {
+                    0.0
+                };
+                sum += w * (a1 * a1 + a2 * a2 + c);
+            }
+            Ok(i0 * sum)
+        }
+    }
+}

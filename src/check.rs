@@ -1,0 +1,216 @@
+//! `fringe check`: resolve case names, run them, compare with closed forms and golden files,
+//! write reports atomically, and decide the exit code (0 pass, 1 a case failed, 2 bad input).
+
+use crate::case::load::{self, Case, CaseError};
+use crate::case::run::{self, CaseResult};
+use crate::report::{self, GoldenError, Row};
+use std::path::{Path, PathBuf};
+
+/// Output format of the verdict table.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Format {
+    Table,
+    Json,
+}
+
+/// Options of a check run.
+#[derive(Clone, Debug)]
+pub struct CheckOptions {
+    pub cases: Vec<String>,
+    pub cases_dir: PathBuf,
+    pub golden_dir: PathBuf,
+    pub out: PathBuf,
+    pub format: Format,
+    pub bless: bool,
+}
+
+/// Bad input or usage: exit code 2.
+#[derive(Debug)]
+pub struct InputError(pub String);
+
+impl From<CaseError> for InputError {
+    fn from(e: CaseError) -> Self {
+        InputError(e.to_string())
+    }
+}
+
+/// Resolve `CASE` arguments: a library name (`cases/<name>.json`) or a path to a case file.
+pub fn resolve(opts: &CheckOptions) -> Result<Vec<PathBuf>, InputError> {
+    if opts.cases.is_empty() {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(&opts.cases_dir)
+            .map_err(|e| {
+                InputError(format!(
+                    "{}: cannot list the case library: {e}",
+                    opts.cases_dir.display()
+                ))
+            })?
+            .filter_map(|e| e.ok().map(|e| e.path()))
+            .filter(|p| {
+                p.extension().is_some_and(|x| x == "json")
+                    && p.file_name().is_some_and(|n| n != "schema.json")
+            })
+            .collect();
+        files.sort();
+        if files.is_empty() {
+            return Err(InputError(format!(
+                "{}: the case library is empty (no *.json case files)",
+                opts.cases_dir.display()
+            )));
+        }
+        return Ok(files);
+    }
+    opts.cases
+        .iter()
+        .map(|c| {
+            let as_path = Path::new(c);
+            if c.ends_with(".json") || c.contains('/') {
+                if as_path.is_file() {
+                    Ok(as_path.to_path_buf())
+                } else {
+                    Err(InputError(format!("{c}: no such case file")))
+                }
+            } else if !c.is_empty()
+                && c.chars()
+                    .all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_')
+            {
+                let p = opts.cases_dir.join(format!("{c}.json"));
+                if p.is_file() {
+                    Ok(p)
+                } else {
+                    Err(InputError(format!(
+                        "{c}: no case of that name in {}",
+                        opts.cases_dir.display()
+                    )))
+                }
+            } else {
+                Err(InputError(format!(
+                    "{c:?}: a case is a library name from [a-z0-9_] or a path to a .json file"
+                )))
+            }
+        })
+        .collect()
+}
+
+/// What a check produced.
+pub struct CheckOutcome {
+    pub rows: Vec<Row>,
+    pub results: Vec<CaseResult>,
+    pub failed_cases: Vec<String>,
+}
+
+/// Load every case (all must be valid before anything runs), run them, compare, write.
+pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
+    let files = resolve(opts)?;
+    let cases: Vec<Case> = files
+        .iter()
+        .map(|f| load::load(f))
+        .collect::<Result<_, _>>()?;
+    let mut seen = std::collections::BTreeSet::new();
+    for c in &cases {
+        if !seen.insert(c.spec.name.clone()) {
+            return Err(InputError(format!(
+                "{}: $.name: case name {:?} is used by two case files",
+                c.file.display(),
+                c.spec.name
+            )));
+        }
+    }
+    let results: Vec<CaseResult> = cases.iter().map(run::run).collect::<Result<_, _>>()?;
+
+    let mut rows = Vec::new();
+    let mut goldens = Vec::new();
+    for (case, r) in cases.iter().zip(&results) {
+        let mut case_rows = report::rows(r);
+        let golden_path = opts.golden_dir.join(format!("{}.csv", r.name));
+        let text = report::golden_csv(r);
+        let golden_row = |pass: bool, dev: f64, note: String| Row {
+            case: r.name.clone(),
+            fidelity: "all".into(),
+            metric: "golden".into(),
+            max_abs_dev: dev,
+            rms_dev: dev,
+            tolerance: Some(case.spec.trace.golden_tolerance),
+            pass: Some(pass),
+            seconds: 0.0,
+            note,
+        };
+        if opts.bless {
+            goldens.push((golden_path, text));
+        } else {
+            match std::fs::read_to_string(&golden_path) {
+                Err(_) => case_rows.push(golden_row(
+                    false,
+                    1.0,
+                    format!(
+                        "no golden file {}: run `fringe check {} --bless` to create it",
+                        golden_path.display(),
+                        r.name
+                    ),
+                )),
+                Ok(g) => match report::compare_golden(r, &g, case.spec.trace.golden_tolerance) {
+                    Ok(dev) => {
+                        case_rows.push(golden_row(true, dev, golden_path.display().to_string()))
+                    }
+                    Err(GoldenError::Corrupt(m)) => {
+                        return Err(InputError(format!(
+                            "{}: corrupt golden file: {m}",
+                            golden_path.display()
+                        )));
+                    }
+                    Err(GoldenError::Mismatch(m)) => case_rows.push(golden_row(
+                        false,
+                        1.0,
+                        format!("{}: {m}", golden_path.display()),
+                    )),
+                },
+            }
+        }
+        rows.extend(case_rows);
+    }
+
+    // Everything ran: now write, each file atomically.
+    let io =
+        |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
+    for r in &results {
+        let dir = opts.out.join(&r.name);
+        let p = dir.join("profile.csv");
+        report::write_atomic(&p, report::profile_csv(r).as_bytes()).map_err(|e| io(&p, e))?;
+        if !r.convergence.is_empty() {
+            let p = dir.join("convergence.csv");
+            report::write_atomic(&p, report::convergence_csv(r).as_bytes())
+                .map_err(|e| io(&p, e))?;
+        }
+    }
+    let summary: Vec<report::CaseSummary> = results
+        .iter()
+        .map(|r| report::CaseSummary {
+            case: &r.name,
+            description: &r.description,
+            formula: &r.formula,
+            auto: r.auto.0.to_string(),
+            auto_reason: &r.auto.1,
+            internal_reflections: r.internal_reflections,
+            dark_points: r.dark_points,
+            trace_seconds: r.trace_seconds,
+            rows: rows.iter().filter(|x| x.case == r.name).cloned().collect(),
+        })
+        .collect();
+    let p = opts.out.join("summary.json");
+    let json = serde_json::to_string_pretty(&summary).map_err(|e| InputError(e.to_string()))?;
+    report::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
+    for (p, text) in &goldens {
+        report::write_atomic(p, text.as_bytes()).map_err(|e| io(p, e))?;
+    }
+
+    let mut failed_cases: Vec<String> = rows
+        .iter()
+        .filter(|r| r.pass == Some(false))
+        .map(|r| r.case.clone())
+        .collect();
+    failed_cases.dedup();
+    Ok(CheckOutcome {
+        rows,
+        results,
+        failed_cases,
+    })
+}
