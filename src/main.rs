@@ -22,8 +22,65 @@ enum FormatArg {
     Json,
 }
 
+#[derive(Clone, Copy, ValueEnum)]
+enum IlluminantArg {
+    D65,
+    E,
+}
+
+impl IlluminantArg {
+    fn get(self) -> fringe::colour::Illuminant {
+        match self {
+            IlluminantArg::D65 => fringe::colour::Illuminant::D65,
+            IlluminantArg::E => fringe::colour::Illuminant::E,
+        }
+    }
+}
+
 #[derive(Subcommand)]
 enum Command {
+    /// Render a case's picture (grid probe; a line probe becomes a strip): every pixel traced
+    /// exactly, monochrome in the case's light or colour in white light (--samples).
+    Render {
+        /// A case name (cases/ or figures/) or a path to a case file.
+        case: String,
+        /// Fidelity level(s), comma-separated: incoherent, scalar, scalar_jump, paper_rules,
+        /// vector, or unpolarized_scalar_jump (the paper's Fig. 7 left model).
+        #[arg(long, value_delimiter = ',', default_value = "vector")]
+        fidelity: Vec<String>,
+        /// White light with K wavelengths uniform over 380-780 nm (a colour picture).
+        #[arg(long, conflicts_with = "wavelengths_nm")]
+        samples: Option<usize>,
+        /// White light at these wavelengths (nm, comma-separated, increasing).
+        #[arg(long, value_delimiter = ',')]
+        wavelengths_nm: Option<Vec<f64>>,
+        /// Illuminant of white light.
+        #[arg(long, value_enum, default_value = "d65")]
+        illuminant: IlluminantArg,
+        /// Picture size WxH (default: the probe's pixels).
+        #[arg(long)]
+        size: Option<String>,
+        /// Output PNG (default reports/render/<case>.png); several levels add _<level>.
+        #[arg(short = 'o', long)]
+        output: Option<PathBuf>,
+        /// The case library folder.
+        #[arg(long, default_value = "cases")]
+        cases_dir: PathBuf,
+    },
+    /// The paper's figures (Figs. 3, 5-8), Newton's colours and the colour error vs spectral
+    /// samples into OUT/figures/, then OUT/index.html.
+    Figures {
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+        /// Picture size WxH of the figures (the paper's is 900x900).
+        #[arg(long, default_value = "240x240")]
+        size: String,
+        /// White-light wavelength samples of Figs. 5-8.
+        #[arg(long, default_value_t = 31)]
+        samples: usize,
+        #[arg(long, value_enum, default_value = "d65")]
+        illuminant: IlluminantArg,
+    },
     /// Run cases against their closed forms and golden files; exit 0 if all pass, 1 if a case
     /// fails, 2 on bad input.
     Check {
@@ -44,6 +101,20 @@ enum Command {
         #[arg(long, default_value = "golden")]
         golden_dir: PathBuf,
     },
+    /// Renderer mode: forward ray fans into pixels, each estimator against the exact result,
+    /// over rays per pixel and pixel size; writes DIR/forward/forward.csv.
+    Forward {
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Rays per source channel (comma-separated).
+        #[arg(long, value_delimiter = ',', default_values_t = [10_000usize, 40_000, 160_000, 640_000])]
+        rays: Vec<usize>,
+        /// Pixels per screen side (comma-separated).
+        #[arg(long, value_delimiter = ',', default_values_t = [16usize, 32, 64])]
+        pixels: Vec<usize>,
+    },
 }
 
 fn main() -> ExitCode {
@@ -56,6 +127,84 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
+        Command::Render {
+            case,
+            fidelity,
+            samples,
+            wavelengths_nm,
+            illuminant,
+            size,
+            output,
+            cases_dir,
+        } => match render_command(
+            &case,
+            &fidelity,
+            samples,
+            wavelengths_nm,
+            illuminant.get(),
+            size.as_deref(),
+            output,
+            &cases_dir,
+        ) {
+            Ok(lines) => {
+                for l in lines {
+                    println!("{l}");
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
+        Command::Figures {
+            out,
+            size,
+            samples,
+            illuminant,
+        } => {
+            let run = || -> Result<(), String> {
+                let opts = fringe::figures::FigureOptions {
+                    size: fringe::render::parse_size(&size)?,
+                    samples,
+                    illuminant: illuminant.get(),
+                    progress: true,
+                    ..fringe::figures::FigureOptions::check_default()
+                };
+                let m = fringe::figures::generate(&out, &opts)?;
+                for e in &m.fig8 {
+                    print!("{}", fringe::figures::fig8_text(&e.left, &e.right, &e.stats));
+                }
+                for (what, secs) in &m.timings {
+                    println!("{what}: {secs:.2} s");
+                }
+                fringe::report::html::write_index(&out)?;
+                println!("figures in {}, report {}", out.join("figures").display(), out.join("index.html").display());
+                Ok(())
+            };
+            match run() {
+                Ok(()) => ExitCode::SUCCESS,
+                Err(e) => {
+                    eprintln!("error: {e}");
+                    ExitCode::from(2)
+                }
+            }
+        }
+        Command::Forward { out, seed, rays, pixels } => {
+            if rays.iter().chain(&pixels).any(|&n| n == 0 || n > 100_000_000) || pixels.iter().any(|&p| p > 4096) {
+                eprintln!("error: --rays must be 1..=1e8 and --pixels 1..=4096");
+                return ExitCode::from(2);
+            }
+            let rows = fringe::forward_study::run(seed, &rays, &pixels);
+            let text = fringe::forward_study::csv(&rows);
+            print!("{text}");
+            let path = out.join("forward").join("forward.csv");
+            if let Err(e) = fringe::report::write_atomic(&path, text.as_bytes()) {
+                eprintln!("error: {}: cannot write: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            ExitCode::SUCCESS
+        }
         Command::Check {
             cases,
             out,
@@ -103,4 +252,41 @@ fn main() -> ExitCode {
             }
         }
     }
+}
+
+/// `fringe render`: parse the arguments into a [`fringe::render::Command`] and run it.
+#[allow(clippy::too_many_arguments)]
+fn render_command(
+    case: &str,
+    fidelity: &[String],
+    samples: Option<usize>,
+    wavelengths_nm: Option<Vec<f64>>,
+    illuminant: fringe::colour::Illuminant,
+    size: Option<&str>,
+    output: Option<PathBuf>,
+    cases_dir: &std::path::Path,
+) -> Result<Vec<String>, String> {
+    use fringe::colour::WavelengthGrid;
+    let shadings = fidelity
+        .iter()
+        .map(|f| fringe::render::parse_shading(f))
+        .collect::<Result<Vec<_>, _>>()?;
+    let white = match (samples, wavelengths_nm) {
+        (Some(k), _) => Some((fringe::figures::visible_grid(k).map_err(|e| format!("--samples {k}: {e}"))?, illuminant)),
+        (None, Some(list)) => Some((
+            WavelengthGrid::from_list(list.iter().map(|nm| nm * 1e-9).collect())
+                .map_err(|e| format!("--wavelengths-nm: {e}"))?,
+            illuminant,
+        )),
+        (None, None) => None,
+    };
+    let cmd = fringe::render::Command {
+        case: fringe::render::resolve_case(case, cases_dir)?,
+        shadings,
+        white,
+        size: size.map(fringe::render::parse_size).transpose()?,
+        output,
+        progress: true,
+    };
+    fringe::render::run_command(&cmd)
 }
