@@ -20,3 +20,4 @@ pub mod source;
 pub mod trace;
 pub mod forward;
 pub mod forward_study;
+pub mod tradeoff;

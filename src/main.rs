@@ -101,6 +101,19 @@ enum Command {
         #[arg(long, default_value = "golden")]
         golden_dir: PathBuf,
     },
+    /// The speed–accuracy trade: every fidelity level × bounce budget × spectral sample count
+    /// per case, against the case's reference; writes DIR/tradeoff/tradeoff.csv.
+    Tradeoff {
+        /// Case names or files (none: the whole library).
+        cases: Vec<String>,
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+        /// Timing repeats per setting (best time kept).
+        #[arg(long, default_value_t = 3)]
+        repeats: usize,
+        #[arg(long, default_value = "cases")]
+        cases_dir: PathBuf,
+    },
     /// Renderer mode: forward ray fans into pixels, each estimator against the exact result,
     /// over rays per pixel and pixel size; writes DIR/forward/forward.csv.
     Forward {
@@ -127,6 +140,47 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
+        Command::Tradeoff { cases, out, repeats, cases_dir } => {
+            let opts = CheckOptions {
+                cases,
+                cases_dir,
+                golden_dir: PathBuf::from("golden"),
+                out: out.clone(),
+                format: Format::Table,
+                bless: false,
+            };
+            let loaded = match check::resolve(&opts).and_then(|files| {
+                files
+                    .iter()
+                    .map(|f| fringe::case::load::load(f).map_err(check::InputError::from))
+                    .collect::<Result<Vec<_>, _>>()
+            }) {
+                Ok(c) => c,
+                Err(e) => {
+                    eprintln!("error: {}", e.0);
+                    return ExitCode::from(2);
+                }
+            };
+            let mut all = Vec::new();
+            for case in &loaded {
+                match fringe::tradeoff::measure(case, repeats) {
+                    Ok(rows) => {
+                        println!("{}", fringe::tradeoff::summary(&case.spec.name, &rows));
+                        all.extend(rows);
+                    }
+                    Err(e) => {
+                        eprintln!("error: {e}");
+                        return ExitCode::from(2);
+                    }
+                }
+            }
+            let path = out.join("tradeoff").join("tradeoff.csv");
+            if let Err(e) = fringe::report::write_atomic(&path, fringe::tradeoff::csv(&all).as_bytes()) {
+                eprintln!("error: {}: cannot write: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            ExitCode::SUCCESS
+        }
         Command::Render {
             case,
             fidelity,

@@ -437,8 +437,13 @@ fn analytic_spacing(
     }
 }
 
-/// Run a validated case.
+/// Run a validated case, including the bounce-convergence report of Airy cases.
 pub fn run(case: &Case) -> Result<CaseResult, CaseError> {
+    run_with(case, true)
+}
+
+/// Run a validated case; `convergence` adds the Airy error-vs-orders table (extra traces).
+pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, CaseError> {
     let spec = &case.spec;
     let levels: Vec<Fidelity> = spec
         .fidelities
@@ -529,7 +534,9 @@ pub fn run(case: &Case) -> Result<CaseResult, CaseError> {
         internal_reflections: outs.iter().map(|o| o.internal).max().unwrap_or(0),
         dark_points,
     };
-    result.convergence = convergence(case, &points)?;
+    if convergence_report {
+        result.convergence = convergence(case, &points)?;
+    }
     Ok(result)
 }
 
