@@ -6,7 +6,10 @@
 //! in contributions per second. Variants: the pre-optimisation core (libm `sin_cos` of the full
 //! phase, linear group search) as a baseline; the per-point `Accumulator`; the batch API on one
 //! thread and on a 2-thread rayon pool; plain and compensated summation. Plus the phasor kernel
-//! alone against `f64::sin_cos`.
+//! alone against `f64::sin_cos` (scalar calls and the batch `phasors_from_cycles`).
+//!
+//! The machine is shared (2 cores): run it when nothing else is busy, or the 2-thread numbers
+//! measure the other load.
 //!
 //! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench --bench accumulate`
 
@@ -132,11 +135,11 @@ fn bench_phasor(c: &mut Criterion) {
 
 fn bench_accumulate(c: &mut Criterion) {
     let pool2 = pool(2);
-    // (label, T, P, G): 64 contributions per point into 4 groups; streaming (64 MiB of
-    // contributions, out of cache) and L2-resident (512 KiB).
+    // (label, T, P, G): 64 contributions per point into 4 groups; streaming from memory
+    // (64 MiB of contributions) and L3-resident (4 MiB).
     for (label, t, p, g) in [
         ("T1M_P16k_G4", 1usize << 20, 1usize << 14, 4u64),
-        ("T8k_P128_G4", 1 << 13, 1 << 7, 4),
+        ("T64k_P1k_G4", 1 << 16, 1 << 10, 4),
     ] {
         let (d, offsets) = data(t, p, g, 1);
         let mut out = vec![0.0; p];

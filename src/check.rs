@@ -171,7 +171,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     // Everything ran: now write, each file atomically.
     let io =
         |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
-    for r in &results {
+    for (case, r) in cases.iter().zip(&results) {
         let dir = opts.out.join(&r.name);
         let p = dir.join("profile.csv");
         report::write_atomic(&p, report::profile_csv(r).as_bytes()).map_err(|e| io(&p, e))?;
@@ -180,6 +180,8 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             report::write_atomic(&p, report::convergence_csv(r).as_bytes())
                 .map_err(|e| io(&p, e))?;
         }
+        // profile.png, convergence.png and probe pictures (src/report/html.rs).
+        report::html::write_case_files(&dir, case, r).map_err(InputError)?;
     }
     let summary: Vec<report::CaseSummary> = results
         .iter()
@@ -201,6 +203,17 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     for (p, text) in &goldens {
         report::write_atomic(p, text.as_bytes()).map_err(|e| io(p, e))?;
     }
+    // The whole library also makes the paper's figures (src/figures.rs); then the one-page
+    // report index.html embeds everything written above.
+    if opts.cases.is_empty() {
+        let m =
+            crate::figures::generate(&opts.out, &crate::figures::FigureOptions::check_default())
+                .map_err(InputError)?;
+        for e in &m.fig8 {
+            eprint!("{}", crate::figures::fig8_text(&e.left, &e.right, &e.stats));
+        }
+    }
+    report::html::write_index(&opts.out).map_err(InputError)?;
 
     let mut failed_cases: Vec<String> = rows
         .iter()

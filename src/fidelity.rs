@@ -67,10 +67,26 @@ pub struct SceneNeeds {
     pub parallel_fields: bool,
     /// Some path is totally internally reflected.
     pub tir: bool,
+    /// The quantity measured is a ray's polarization state (e.g. a retardance), not only an
+    /// intensity: the scalar rungs cannot represent it.
+    pub polarization_state: bool,
 }
 
 /// `auto`: the cheapest rung that is exact for a scene with these needs, and why.
 pub fn auto_select(needs: &SceneNeeds) -> (Fidelity, String) {
+    if needs.polarization_state {
+        return if needs.tir {
+            (
+                Fidelity::Vector,
+                "a polarization state is measured and light is totally reflected: only complex Fresnel (P5, P6) gets the retardance right".into(),
+            )
+        } else {
+            (
+                Fidelity::PaperRules,
+                "a polarization state is measured: s and p must be carried separately (no TIR, so the paper's rules are exact)".into(),
+            )
+        };
+    }
     if !needs.interference {
         return (
             Fidelity::Incoherent,

@@ -52,7 +52,10 @@ impl Screen {
     }
 
     pub fn pixel_size(&self) -> [f64; 2] {
-        [self.size_m[0] / self.pixels[0] as f64, self.size_m[1] / self.pixels[1] as f64]
+        [
+            self.size_m[0] / self.pixels[0] as f64,
+            self.size_m[1] / self.pixels[1] as f64,
+        ]
     }
 
     /// Centre of pixel (column i, row j).
@@ -66,7 +69,10 @@ impl Screen {
     /// Screen coordinates (m, from the lower-left corner) of a point on the screen plane.
     fn coords(&self, x: DVec3) -> [f64; 2] {
         let d = x - self.center;
-        [d.dot(self.u) + 0.5 * self.size_m[0], d.dot(self.v) + 0.5 * self.size_m[1]]
+        [
+            d.dot(self.u) + 0.5 * self.size_m[0],
+            d.dot(self.v) + 0.5 * self.size_m[1],
+        ]
     }
 }
 
@@ -135,7 +141,12 @@ impl SplitMix {
 const CHUNK_ROWS: usize = 8;
 
 /// Trace the fans of every point source of `scene` to `screen`.
-pub fn trace_fans(scene: &Scene, optics: &SceneOptics, screen: &Screen, st: &ForwardSettings) -> Vec<Landing> {
+pub fn trace_fans(
+    scene: &Scene,
+    optics: &SceneOptics,
+    screen: &Screen,
+    st: &ForwardSettings,
+) -> Vec<Landing> {
     let side = (st.rays as f64).sqrt().ceil().max(1.0) as usize;
     let cos_max = st.cone_half_angle.cos();
     let solid_angle = std::f64::consts::TAU * (1.0 - cos_max);
@@ -145,24 +156,49 @@ pub fn trace_fans(scene: &Scene, optics: &SceneOptics, screen: &Screen, st: &For
     let e2 = axis.cross(e1);
     let mut out = Vec::new();
     for (si, src) in scene.sources.iter().enumerate() {
-        let Emitter::Point { position } = src.emitter else { continue };
+        let Emitter::Point { position } = src.emitter else {
+            continue;
+        };
         for ch in src.channels() {
             let chunks: Vec<Vec<Landing>> = (0..side.div_ceil(CHUNK_ROWS))
                 .into_par_iter()
                 .map(|chunk| {
-                    let mut rng = SplitMix(st.seed ^ ((si as u64) << 48) ^ (ch.coherence_id << 32) ^ chunk as u64);
+                    let mut rng = SplitMix(
+                        st.seed ^ ((si as u64) << 48) ^ (ch.coherence_id << 32) ^ chunk as u64,
+                    );
                     let mut local = Vec::new();
                     for a in chunk * CHUNK_ROWS..((chunk + 1) * CHUNK_ROWS).min(side) {
                         for b in 0..side {
                             // Stratified equal-area sampling of the cone (cos θ uniform, φ uniform).
-                            let cos_t = 1.0 - (1.0 - cos_max) * (a as f64 + rng.next_f64()) / side as f64;
-                            let phi = std::f64::consts::TAU * (b as f64 + rng.next_f64()) / side as f64;
+                            let cos_t =
+                                1.0 - (1.0 - cos_max) * (a as f64 + rng.next_f64()) / side as f64;
+                            let phi =
+                                std::f64::consts::TAU * (b as f64 + rng.next_f64()) / side as f64;
                             let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
                             let dir = cos_t * axis + sin_t * (phi.cos() * e1 + phi.sin() * e2);
-                            let mut ray = Ray::linear(position, dir, ch.field_direction(dir), ch.intensity.sqrt(), optics.lambda_m, optics.ambient_index);
+                            let mut ray = Ray::linear(
+                                position,
+                                dir,
+                                ch.field_direction(dir),
+                                ch.intensity.sqrt(),
+                                optics.lambda_m,
+                                optics.ambient_index,
+                            );
                             ray.coherence_id = ch.coherence_id;
                             let power = ch.intensity * d_omega;
-                            follow(scene, optics, screen, st, si, ray, power, power, &mut Vec::new(), None, &mut local);
+                            follow(
+                                scene,
+                                optics,
+                                screen,
+                                st,
+                                si,
+                                ray,
+                                power,
+                                power,
+                                &mut Vec::new(),
+                                None,
+                                &mut local,
+                            );
                         }
                     }
                     local
@@ -197,7 +233,10 @@ fn follow(
         }
         if let Some(t) = surf.plane.intersect(o, d) {
             let x = o + t * d;
-            if t > 1e-12 && best.is_none_or(|(bt, _)| t < bt) && (surf.blocks(x) || surf.interacts(x)) {
+            if t > 1e-12
+                && best.is_none_or(|(bt, _)| t < bt)
+                && (surf.blocks(x) || surf.interacts(x))
+            {
                 best = Some((t, j));
             }
         }
@@ -236,19 +275,46 @@ fn follow(
     };
     let children = interact(&ray, &hit, crate::interaction::CoefficientModel::Vector);
     let parent_i = ray.intensity();
-    let branch = |child: Ray, kind: EventKind, factor: f64, seq: &mut Vec<Event>, out: &mut Vec<Landing>| {
-        let p = if parent_i > 0.0 { power * child.intensity() / parent_i * factor } else { 0.0 };
-        if p > st.min_power * emitted {
-            seq.push(Event { surface: j, kind });
-            follow(scene, optics, screen, st, source, child, p, emitted, seq, Some(j), out);
-            seq.pop();
-        }
-    };
-    branch(children.reflected.clone(), EventKind::Reflect, 1.0, seq, out);
+    let branch =
+        |child: Ray, kind: EventKind, factor: f64, seq: &mut Vec<Event>, out: &mut Vec<Landing>| {
+            let p = if parent_i > 0.0 {
+                power * child.intensity() / parent_i * factor
+            } else {
+                0.0
+            };
+            if p > st.min_power * emitted {
+                seq.push(Event { surface: j, kind });
+                follow(
+                    scene,
+                    optics,
+                    screen,
+                    st,
+                    source,
+                    child,
+                    p,
+                    emitted,
+                    seq,
+                    Some(j),
+                    out,
+                );
+                seq.pop();
+            }
+        };
+    branch(
+        children.reflected.clone(),
+        EventKind::Reflect,
+        1.0,
+        seq,
+        out,
+    );
     if let Some(t_child) = children.refracted.clone() {
         // Power transmission factor of the field: (n2 cos θt)/(n1 cos θi).
         let cos_t = t_child.dir.dot(surf.plane.normal).abs();
-        let factor = if children.cos_theta_i > 0.0 { children.n2 * cos_t / (children.n1 * children.cos_theta_i) } else { 0.0 };
+        let factor = if children.cos_theta_i > 0.0 {
+            children.n2 * cos_t / (children.n1 * children.cos_theta_i)
+        } else {
+            0.0
+        };
         branch(t_child, EventKind::Refract, factor, seq, out);
     }
 }
@@ -286,7 +352,10 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
         let j = ((l.coords[1] / ph) as usize).min(ny - 1);
         let ci = (((l.coords[0] - i as f64 * pw) / cw) as usize).min(cells - 1);
         let cj = (((l.coords[1] - j as f64 * ph) / chh) as usize).min(cells - 1);
-        buckets.entry((j * nx + i, cj * cells + ci)).or_default().push(k);
+        buckets
+            .entry((j * nx + i, cj * cells + ci))
+            .or_default()
+            .push(k);
     }
     let normal = screen.normal();
     let mut img = vec![0.0; nx * ny];
@@ -307,7 +376,11 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
                     let e = l.ray.field();
                     let norm = l.ray.intensity().sqrt();
                     let amp = (l.power / (cell_area * cos * l.ray.index)).sqrt() / norm;
-                    acc.add_parts(l.ray.coherence_id, (l.ray.optical_path_m - reference_m) / l.ray.wavelength_m, &e.map(|x| x * amp));
+                    acc.add_parts(
+                        l.ray.coherence_id,
+                        (l.ray.optical_path_m - reference_m) / l.ray.wavelength_m,
+                        &e.map(|x| x * amp),
+                    );
                 }
                 acc.intensity()
             }
@@ -319,7 +392,10 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
                     let l = &landings[k];
                     let f = fam.entry(&l.family).or_insert_with(|| {
                         order.push(&l.family);
-                        FamilySum { nearest: f64::INFINITY, ..Default::default() }
+                        FamilySum {
+                            nearest: f64::INFINITY,
+                            ..Default::default()
+                        }
                     });
                     let mut op = l.ray.optical_path_m - reference_m;
                     if transport {
@@ -343,7 +419,11 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
                     let f = &fam[key];
                     let cos = f.cos_sum / f.count as f64;
                     let amp = (f.power / (cell_area * cos * f.index)).sqrt();
-                    let ph = if f.phasor.norm() > 0.0 { f.phasor / f.phasor.norm() } else { Complex64::from(1.0) };
+                    let ph = if f.phasor.norm() > 0.0 {
+                        f.phasor / f.phasor.norm()
+                    } else {
+                        Complex64::from(1.0)
+                    };
                     // Phase as a complex field factor (cycles 0: the phasor carries it).
                     acc.add_parts(f.coherence_id, 0.0, &f.field.map(|x| x * amp * ph));
                 }

@@ -9,6 +9,7 @@
 //! * `airy_plate_screen`: the same plate 10 µm thick, up to 7 internal reflections, on a
 //!   finite-distance screen.
 
+use crate::fidelity::Fidelity;
 use crate::forward::{self, Estimator, ForwardSettings, Screen};
 use crate::geometry::{Extent, Plane, Rect};
 use crate::material::Medium;
@@ -16,7 +17,6 @@ use crate::path::{EnumerationLimits, SolveOptions, Target};
 use crate::scene::{Scene, Surface, SurfaceKind};
 use crate::source::{Emitter, Polarization, Source};
 use crate::trace::{self, TraceSettings};
-use crate::fidelity::Fidelity;
 use glam::DVec3;
 use rayon::prelude::*;
 use std::fmt::Write as _;
@@ -40,7 +40,9 @@ fn point_source(name: &str, position: DVec3, group: u64) -> Source {
     Source {
         name: name.into(),
         emitter: Emitter::Point { position },
-        polarization: Polarization::Unpolarized { reference: DVec3::Y },
+        polarization: Polarization::Unpolarized {
+            reference: DVec3::Y,
+        },
         intensity: 1.0,
         coherence_group: group,
         coherence_length_m: f64::INFINITY,
@@ -51,8 +53,12 @@ fn point_source(name: &str, position: DVec3, group: u64) -> Source {
 pub fn young_pinholes(pixels: usize) -> StudyScene {
     let (d, l, lambda) = (1e-4, 0.1, 550e-9);
     let mut scene = Scene::new(Medium::vacuum());
-    scene.sources.push(point_source("pinhole1", DVec3::new(0.0, 0.5 * d, 0.0), 0));
-    scene.sources.push(point_source("pinhole2", DVec3::new(0.0, -0.5 * d, 0.0), 0));
+    scene
+        .sources
+        .push(point_source("pinhole1", DVec3::new(0.0, 0.5 * d, 0.0), 0));
+    scene
+        .sources
+        .push(point_source("pinhole2", DVec3::new(0.0, -0.5 * d, 0.0), 0));
     StudyScene {
         name: "young_pinholes",
         scene,
@@ -73,10 +79,23 @@ pub fn young_pinholes(pixels: usize) -> StudyScene {
 }
 
 /// The paper's amplitude-division plate (thickness `thickness_m`), shield and screen.
-pub fn plate_scene(name: &'static str, pixels: usize, thickness_m: f64, internal: usize) -> StudyScene {
+pub fn plate_scene(
+    name: &'static str,
+    pixels: usize,
+    thickness_m: f64,
+    internal: usize,
+) -> StudyScene {
     let lambda = 550e-9;
     let mut scene = Scene::new(Medium::vacuum());
-    scene.add_plate("plate", DVec3::ZERO, DVec3::Z, thickness_m, Medium::vacuum(), Medium::constant("glass", 1.5), Medium::vacuum());
+    scene.add_plate(
+        "plate",
+        DVec3::ZERO,
+        DVec3::Z,
+        thickness_m,
+        Medium::vacuum(),
+        Medium::constant("glass", 1.5),
+        Medium::vacuum(),
+    );
     let shield_plane = Plane::new(DVec3::new(-0.005, 0.0, 0.0101), DVec3::Z);
     let (u, v) = shield_plane.axes(DVec3::X);
     scene.surfaces.push(Surface {
@@ -104,7 +123,13 @@ pub fn plate_scene(name: &'static str, pixels: usize, thickness_m: f64, internal
         max_events: 6,
     };
     let plan = trace::plan(&scene, &optics, &[center], &lim);
-    let (arr, _) = trace::arrivals(&scene, &optics, &plan, &Target::Point(center), &TraceSettings::default());
+    let (arr, _) = trace::arrivals(
+        &scene,
+        &optics,
+        &plan,
+        &Target::Point(center),
+        &TraceSettings::default(),
+    );
     let mut beams: Vec<(f64, DVec3, &Vec<crate::path::Event>)> = Vec::new();
     for a in &arr {
         if !beams.iter().any(|b| *b.2 == a.path.sequence) {
@@ -160,7 +185,10 @@ pub fn exact_image(s: &StudyScene) -> Vec<f64> {
 
 /// Relative RMS and max error of `img` against `exact` (normalised by the largest exact value).
 pub fn errors(img: &[f64], exact: &[f64]) -> (f64, f64) {
-    let scale = exact.iter().fold(0.0f64, |m, v| m.max(v.abs())).max(f64::MIN_POSITIVE);
+    let scale = exact
+        .iter()
+        .fold(0.0f64, |m, v| m.max(v.abs()))
+        .max(f64::MIN_POSITIVE);
     let mut max = 0.0f64;
     let mut sum2 = 0.0;
     for (a, b) in img.iter().zip(exact) {
@@ -241,12 +269,22 @@ pub fn run(seed: u64, ray_counts: &[usize], pixel_counts: &[usize]) -> Vec<Study
 
 /// The study as CSV.
 pub fn csv(rows: &[StudyRow]) -> String {
-    let mut s = String::from("scene,estimator,pixels,pixel_over_fringe,rays_per_channel,mean_rays_per_pixel_per_channel,rel_rms_error,rel_max_error,seconds\n");
+    let mut s = String::from(
+        "scene,estimator,pixels,pixel_over_fringe,rays_per_channel,mean_rays_per_pixel_per_channel,rel_rms_error,rel_max_error,seconds\n",
+    );
     for r in rows {
         let _ = writeln!(
             s,
             "{},{},{},{:.4},{},{:.2},{:.4e},{:.4e},{:.3}",
-            r.scene, r.estimator, r.pixels, r.pixel_over_fringe, r.rays_per_channel, r.mean_rays_per_pixel, r.rel_rms_error, r.rel_max_error, r.seconds
+            r.scene,
+            r.estimator,
+            r.pixels,
+            r.pixel_over_fringe,
+            r.rays_per_channel,
+            r.mean_rays_per_pixel,
+            r.rel_rms_error,
+            r.rel_max_error,
+            r.seconds
         );
     }
     s

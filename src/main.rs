@@ -140,7 +140,12 @@ fn main() -> ExitCode {
         }
     };
     match cli.command {
-        Command::Tradeoff { cases, out, repeats, cases_dir } => {
+        Command::Tradeoff {
+            cases,
+            out,
+            repeats,
+            cases_dir,
+        } => {
             let opts = CheckOptions {
                 cases,
                 cases_dir,
@@ -166,6 +171,19 @@ fn main() -> ExitCode {
                 match fringe::tradeoff::measure(case, repeats) {
                     Ok(rows) => {
                         println!("{}", fringe::tradeoff::summary(&case.spec.name, &rows));
+                        let path = out
+                            .join("tradeoff")
+                            .join(format!("{}_pareto.png", case.spec.name));
+                        let written =
+                            fringe::report::tradeoff_plot::pareto_png(&case.spec.name, &rows)
+                                .and_then(|png| {
+                                    fringe::report::write_atomic(&path, &png)
+                                        .map_err(|e| e.to_string())
+                                });
+                        if let Err(e) = written {
+                            eprintln!("error: {}: {e}", path.display());
+                            return ExitCode::from(2);
+                        }
                         all.extend(rows);
                     }
                     Err(e) => {
@@ -175,7 +193,9 @@ fn main() -> ExitCode {
                 }
             }
             let path = out.join("tradeoff").join("tradeoff.csv");
-            if let Err(e) = fringe::report::write_atomic(&path, fringe::tradeoff::csv(&all).as_bytes()) {
+            if let Err(e) =
+                fringe::report::write_atomic(&path, fringe::tradeoff::csv(&all).as_bytes())
+            {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
@@ -227,13 +247,20 @@ fn main() -> ExitCode {
                 };
                 let m = fringe::figures::generate(&out, &opts)?;
                 for e in &m.fig8 {
-                    print!("{}", fringe::figures::fig8_text(&e.left, &e.right, &e.stats));
+                    print!(
+                        "{}",
+                        fringe::figures::fig8_text(&e.left, &e.right, &e.stats)
+                    );
                 }
                 for (what, secs) in &m.timings {
                     println!("{what}: {secs:.2} s");
                 }
                 fringe::report::html::write_index(&out)?;
-                println!("figures in {}, report {}", out.join("figures").display(), out.join("index.html").display());
+                println!(
+                    "figures in {}, report {}",
+                    out.join("figures").display(),
+                    out.join("index.html").display()
+                );
                 Ok(())
             };
             match run() {
@@ -244,8 +271,18 @@ fn main() -> ExitCode {
                 }
             }
         }
-        Command::Forward { out, seed, rays, pixels } => {
-            if rays.iter().chain(&pixels).any(|&n| n == 0 || n > 100_000_000) || pixels.iter().any(|&p| p > 4096) {
+        Command::Forward {
+            out,
+            seed,
+            rays,
+            pixels,
+        } => {
+            if rays
+                .iter()
+                .chain(&pixels)
+                .any(|&n| n == 0 || n > 100_000_000)
+                || pixels.iter().any(|&p| p > 4096)
+            {
                 eprintln!("error: --rays must be 1..=1e8 and --pixels 1..=4096");
                 return ExitCode::from(2);
             }
@@ -255,6 +292,14 @@ fn main() -> ExitCode {
             let path = out.join("forward").join("forward.csv");
             if let Err(e) = fringe::report::write_atomic(&path, text.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            let path = out.join("forward").join("forward.png");
+            let written = fringe::report::tradeoff_plot::forward_png(&rows).and_then(|png| {
+                fringe::report::write_atomic(&path, &png).map_err(|e| e.to_string())
+            });
+            if let Err(e) = written {
+                eprintln!("error: {}: {e}", path.display());
                 return ExitCode::from(2);
             }
             ExitCode::SUCCESS
@@ -326,7 +371,10 @@ fn render_command(
         .map(|f| fringe::render::parse_shading(f))
         .collect::<Result<Vec<_>, _>>()?;
     let white = match (samples, wavelengths_nm) {
-        (Some(k), _) => Some((fringe::figures::visible_grid(k).map_err(|e| format!("--samples {k}: {e}"))?, illuminant)),
+        (Some(k), _) => Some((
+            fringe::figures::visible_grid(k).map_err(|e| format!("--samples {k}: {e}"))?,
+            illuminant,
+        )),
         (None, Some(list)) => Some((
             WavelengthGrid::from_list(list.iter().map(|nm| nm * 1e-9).collect())
                 .map_err(|e| format!("--wavelengths-nm: {e}"))?,

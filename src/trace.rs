@@ -301,5 +301,6 @@ pub fn merge_needs(a: SceneNeeds, b: SceneNeeds) -> SceneNeeds {
         interfaces: a.interfaces || b.interfaces,
         parallel_fields: a.parallel_fields && b.parallel_fields,
         tir: a.tir || b.tir,
+        polarization_state: a.polarization_state || b.polarization_state,
     }
 }

@@ -54,9 +54,16 @@ fn bounce_budgets(case: &Case) -> Vec<Budget> {
     if case.spec.scene.surfaces.is_empty() {
         return vec![Budget::Fixed(case.spec.trace.max_internal_reflections)];
     }
-    let airy = case.spec.references.iter().any(|r| matches!(r.model, ReferenceModel::Airy { .. }));
+    let airy = case
+        .spec
+        .references
+        .iter()
+        .any(|r| matches!(r.model, ReferenceModel::Airy { .. }));
     if airy {
-        let mut v: Vec<Budget> = [1, 3, 5, 9, 17, 33].into_iter().map(Budget::Fixed).collect();
+        let mut v: Vec<Budget> = [1, 3, 5, 9, 17, 33]
+            .into_iter()
+            .map(Budget::Fixed)
+            .collect();
         v.extend([1e-4, 1e-7, 1e-10, 1e-13].map(Budget::TailBound));
         v
     } else {
@@ -71,7 +78,10 @@ fn sample_counts(case: &Case) -> Vec<usize> {
     match case.spec.light {
         Light::Monochrome { .. } => vec![1],
         Light::Gaussian { samples, .. } => {
-            let mut v: Vec<usize> = [9, 17, 33, 65, samples].into_iter().filter(|&s| s <= samples).collect();
+            let mut v: Vec<usize> = [9, 17, 33, 65, samples]
+                .into_iter()
+                .filter(|&s| s <= samples)
+                .collect();
             v.sort_unstable();
             v.dedup();
             v
@@ -100,7 +110,11 @@ fn at_setting(case: &Case, level: Fidelity, budget: Budget, samples: usize) -> C
 
 /// Measure every setting of a case.
 pub fn measure(case: &Case, repeats: usize) -> Result<Vec<TradeoffRow>, CaseError> {
-    let tolerance = case.spec.references[0].tolerances.get(&Fidelity::Vector).copied().unwrap_or(0.0);
+    let tolerance = case.spec.references[0]
+        .tolerances
+        .get(&Fidelity::Vector)
+        .copied()
+        .unwrap_or(0.0);
     let mut rows = Vec::new();
     for level in Fidelity::ALL {
         for &budget in &bounce_budgets(case) {
@@ -113,7 +127,9 @@ pub fn measure(case: &Case, repeats: usize) -> Result<Vec<TradeoffRow>, CaseErro
                     let t0 = Instant::now();
                     let r = run::run_with(&c, false)?;
                     best = best.min(t0.elapsed().as_secs_f64());
-                    dev = r.metrics[0].stats(level).map_or(f64::INFINITY, |s| s.max_abs_dev);
+                    dev = r.metrics[0]
+                        .stats(level)
+                        .map_or(f64::INFINITY, |s| s.max_abs_dev);
                     internal = r.internal_reflections;
                 }
                 rows.push(TradeoffRow {
@@ -143,7 +159,11 @@ pub fn cheapest(rows: &[TradeoffRow]) -> Option<&TradeoffRow> {
 /// and more accurate.
 pub fn pareto(rows: &[TradeoffRow]) -> Vec<bool> {
     rows.iter()
-        .map(|r| !rows.iter().any(|o| o.seconds < r.seconds && o.max_abs_dev < r.max_abs_dev))
+        .map(|r| {
+            !rows
+                .iter()
+                .any(|o| o.seconds < r.seconds && o.max_abs_dev < r.max_abs_dev)
+        })
         .collect()
 }
 
@@ -151,15 +171,26 @@ pub fn pareto(rows: &[TradeoffRow]) -> Vec<bool> {
 pub fn machine() -> String {
     let cpu = std::fs::read_to_string("/proc/cpuinfo")
         .ok()
-        .and_then(|s| s.lines().find(|l| l.starts_with("model name")).map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string()))
+        .and_then(|s| {
+            s.lines()
+                .find(|l| l.starts_with("model name"))
+                .map(|l| l.split(':').nth(1).unwrap_or("").trim().to_string())
+        })
         .unwrap_or_else(|| "unknown CPU".into());
     let threads = rayon::current_num_threads();
-    format!("{cpu}; {threads} threads; {} {}", std::env::consts::OS, std::env::consts::ARCH)
+    format!(
+        "{cpu}; {threads} threads; {} {}",
+        std::env::consts::OS,
+        std::env::consts::ARCH
+    )
 }
 
 /// `tradeoff.csv` text.
 pub fn csv(rows: &[TradeoffRow]) -> String {
-    let mut s = format!("# machine: {}\n# timings: best wall time of repeated runs; deviations relative to the primary reference, as in `fringe check`\n", machine());
+    let mut s = format!(
+        "# machine: {}\n# timings: best wall time of repeated runs; deviations relative to the primary reference, as in `fringe check`\n",
+        machine()
+    );
     s.push_str("case,fidelity,bounce_budget,internal_reflections,spectral_samples,seconds,max_abs_dev,tolerance,meets_tolerance,pareto\n");
     for (r, on_front) in rows.iter().zip(pareto(rows)) {
         let _ = writeln!(
@@ -185,7 +216,13 @@ pub fn summary(case: &str, rows: &[TradeoffRow]) -> String {
     match cheapest(rows) {
         Some(r) => format!(
             "{case}: cheapest setting within {:.0e}: {} with bounce budget {} ({} internal reflections) and {} spectral sample(s), {:.3e} s (max |dev| {:.2e})",
-            r.tolerance, r.fidelity, r.budget, r.internal_reflections, r.spectral_samples, r.seconds, r.max_abs_dev
+            r.tolerance,
+            r.fidelity,
+            r.budget,
+            r.internal_reflections,
+            r.spectral_samples,
+            r.seconds,
+            r.max_abs_dev
         ),
         None => format!("{case}: no setting tried meets the tolerance"),
     }

@@ -112,7 +112,7 @@ fn dd_div_f(a: Dd, b: f64) -> Dd {
     dd_add(two_sum(q1, q2), Dd(q3, 0.0))
 }
 /// 2π to ~2^-160 (three doubles: 6.283185307179586 + 2.4492935982947064e-16 − 5.989539619436679e-33).
-const TWO_PI_DD: Dd = Dd(6.283_185_307_179_586, 2.449_293_598_294_706_4e-16);
+const TWO_PI_DD: Dd = Dd(TAU, 2.449_293_598_294_706_4e-16);
 const TWO_PI_3: f64 = -5.989_539_619_436_679e-33;
 
 /// (cos 2πc, sin 2πc) from the double-double Taylor series, rounded to f64 at the end.
@@ -156,7 +156,7 @@ fn max_errors<const K: usize>(
         for (w, phasor) in worst.iter_mut().zip(&phasors) {
             let (pc, ps) = phasor(a);
             let e = (pc - rc).abs().max((ps - rs).abs());
-            if !(e <= w.0) {
+            if e > w.0 || e.is_nan() {
                 *w = (e, a);
             }
         }

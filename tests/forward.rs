@@ -35,12 +35,21 @@ fn intensity_does_not_grow_with_the_number_of_rays() {
     let naive = |r| mean(&render(&s, r, 7, Estimator::NaiveRays));
     let (f1, f4) = (fam(n), fam(m));
     let ratio_family = f4 / f1;
-    assert!((ratio_family - 1.0).abs() < 0.03, "family estimator: mean {f1:e} at {n} rays, {f4:e} at {m} rays, ratio {ratio_family}");
+    assert!(
+        (ratio_family - 1.0).abs() < 0.03,
+        "family estimator: mean {f1:e} at {n} rays, {f4:e} at {m} rays, ratio {ratio_family}"
+    );
     let ratio_naive = naive(m) / naive(n);
-    assert!(ratio_naive > 3.0, "naive coherent ray sum should grow ~4x with 4x the rays, grew {ratio_naive}");
+    assert!(
+        ratio_naive > 3.0,
+        "naive coherent ray sum should grow ~4x with 4x the rays, grew {ratio_naive}"
+    );
     // And the family mean is the exact mean (the exact image at pixel centres, same units).
     let exact = mean(&forward_study::exact_image(&s));
-    assert!((f4 / exact - 1.0).abs() < 0.03, "family mean {f4:e}, exact mean {exact:e}");
+    assert!(
+        (f4 / exact - 1.0).abs() < 0.03,
+        "family mean {f4:e}, exact mean {exact:e}"
+    );
 }
 
 /// The transported-phase estimator converges to the exact image (Monte Carlo noise ~ 1/√rays).
@@ -48,22 +57,36 @@ fn intensity_does_not_grow_with_the_number_of_rays() {
 fn transported_phase_converges_to_the_exact_image() {
     let s = forward_study::young_pinholes(16);
     let exact = forward_study::exact_image(&s);
-    let (e1, _) = forward_study::errors(&render(&s, 10_000, 3, Estimator::TransportedPhase), &exact);
-    let (e2, _) = forward_study::errors(&render(&s, 160_000, 3, Estimator::TransportedPhase), &exact);
+    let (e1, _) =
+        forward_study::errors(&render(&s, 10_000, 3, Estimator::TransportedPhase), &exact);
+    let (e2, _) =
+        forward_study::errors(&render(&s, 160_000, 3, Estimator::TransportedPhase), &exact);
     assert!(e2 < 0.02, "rms error {e2:e} at 160k rays");
-    assert!(e2 < 0.5 * e1, "error should fall with rays: {e1:e} → {e2:e}");
+    assert!(
+        e2 < 0.5 * e1,
+        "error should fall with rays: {e1:e} → {e2:e}"
+    );
     // The landing phase (no transport) does not converge: each wave's own phase runs through
     // many cycles across a pixel (carrier k·sin α·pixel), far faster than the fringes.
     let (el, _) = forward_study::errors(&render(&s, 160_000, 3, Estimator::LandingPhase), &exact);
-    assert!(el > 10.0 * e2, "landing phase error {el:e} vs transported {e2:e}");
+    assert!(
+        el > 10.0 * e2,
+        "landing phase error {el:e} vs transported {e2:e}"
+    );
 }
 
 /// Deterministic for a seed, whatever the number of threads.
 #[test]
 fn forward_mode_is_deterministic() {
     let s = forward_study::plate_scene("amplitude_division", 8, 50e-6, 1);
-    let one = rayon::ThreadPoolBuilder::new().num_threads(1).build().unwrap();
-    let two = rayon::ThreadPoolBuilder::new().num_threads(2).build().unwrap();
+    let one = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let two = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .unwrap();
     let a = one.install(|| render(&s, 20_000, 11, Estimator::Supersampled { cells: 2 }));
     let b = two.install(|| render(&s, 20_000, 11, Estimator::Supersampled { cells: 2 }));
     assert_eq!(a, b, "same seed, 1 vs 2 threads");
@@ -82,5 +105,8 @@ fn emitted_power_lands_on_the_screen() {
     let total: f64 = landings.iter().map(|l| l.power).sum();
     let omega = std::f64::consts::TAU * (1.0 - s.cone_half_angle.cos());
     let expected = 2.0 * omega; // two unit-intensity sources (two half-intensity channels each)
-    assert!((total / expected - 1.0).abs() < 1e-12, "landed {total:e}, emitted {expected:e}");
+    assert!(
+        (total / expected - 1.0).abs() < 1e-12,
+        "landed {total:e}, emitted {expected:e}"
+    );
 }

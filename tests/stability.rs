@@ -21,7 +21,10 @@ fn plane_wave(theta: f64, angle_rad: f64) -> Source {
             direction: DVec3::new(theta.sin(), 0.0, -theta.cos()),
             reference_point: DVec3::new(0.0, 0.0, 1e-3),
         },
-        polarization: Polarization::Linear { reference: DVec3::Y, angle_rad },
+        polarization: Polarization::Linear {
+            reference: DVec3::Y,
+            angle_rad,
+        },
         intensity: 1.0,
         coherence_group: 0,
         coherence_length_m: f64::INFINITY,
@@ -29,9 +32,25 @@ fn plane_wave(theta: f64, angle_rad: f64) -> Source {
 }
 
 /// Traced reflectance (or transmittance) of a film in the far field, `internal` reflections.
-fn traced_film(n: [f64; 3], d: f64, theta: f64, lambda: f64, pol_angle: f64, internal: usize, reflected: bool) -> f64 {
+fn traced_film(
+    n: [f64; 3],
+    d: f64,
+    theta: f64,
+    lambda: f64,
+    pol_angle: f64,
+    internal: usize,
+    reflected: bool,
+) -> f64 {
     let mut scene = Scene::new(Medium::constant("n1", n[0]));
-    scene.add_plate("film", DVec3::ZERO, DVec3::Z, d, Medium::constant("n1", n[0]), Medium::constant("n2", n[1]), Medium::constant("n3", n[2]));
+    scene.add_plate(
+        "film",
+        DVec3::ZERO,
+        DVec3::Z,
+        d,
+        Medium::constant("n1", n[0]),
+        Medium::constant("n2", n[1]),
+        Medium::constant("n3", n[2]),
+    );
     scene.sources.push(plane_wave(theta, pol_angle));
     let optics = scene.optics(lambda).unwrap();
     let d_in = DVec3::new(theta.sin(), 0.0, -theta.cos());
@@ -40,10 +59,19 @@ fn traced_film(n: [f64; 3], d: f64, theta: f64, lambda: f64, pol_angle: f64, int
     } else {
         fringe::fresnel::refract(d_in, DVec3::Z, n[0], n[2]).unwrap()
     };
-    let target = Target::Direction { dir, reference: DVec3::new(0.0, 0.0, 1e-3) };
-    let limits = EnumerationLimits { max_internal_reflections: internal, max_events: 2 * internal + 4 };
+    let target = Target::Direction {
+        dir,
+        reference: DVec3::new(0.0, 0.0, 1e-3),
+    };
+    let limits = EnumerationLimits {
+        max_internal_reflections: internal,
+        max_events: 2 * internal + 4,
+    };
     let plan = trace::plan(&scene, &optics, &[DVec3::new(0.0, 0.0, 1e-3)], &limits);
-    let st = TraceSettings { limits, ..Default::default() };
+    let st = TraceSettings {
+        limits,
+        ..Default::default()
+    };
     let (arr, _) = trace::arrivals(&scene, &optics, &plan, &target, &st);
     let i = trace::intensity(&arr, Fidelity::Vector);
     if reflected {
@@ -61,33 +89,64 @@ fn named_angles_plus_minus_1e_12() {
     for theta in [0.0, 1e-12] {
         let f = fresnel(n1, n2, f64::cos(theta));
         let r0 = (n1 - n2) / (n1 + n2);
-        assert!((f.r_s.re - r0).abs() < 1e-15, "θ = {theta:e}: r_s {:e}, expected {r0:e}", f.r_s.re);
-        assert!((f.r_p.re + r0).abs() < 1e-15, "θ = {theta:e}: r_p {:e}, expected {:e}", f.r_p.re, -r0);
+        assert!(
+            (f.r_s.re - r0).abs() < 1e-15,
+            "θ = {theta:e}: r_s {:e}, expected {r0:e}",
+            f.r_s.re
+        );
+        assert!(
+            (f.r_p.re + r0).abs() < 1e-15,
+            "θ = {theta:e}: r_p {:e}, expected {:e}",
+            f.r_p.re,
+            -r0
+        );
     }
     // Brewster ± 1e-12: r_p changes sign and |r_p| ≤ |dr_p/dθ|·1e-12 (|dr_p/dθ| < 2 here, from
     // differentiating (P2): at θB it equals (1 − n²)/(n²+1)^{...}; bounded by 2 for n ≤ 4).
     let tb = brewster_angle(n1, n2);
     let below = fresnel(n1, n2, (tb - 1e-12).cos()).r_p.re;
     let above = fresnel(n1, n2, (tb + 1e-12).cos()).r_p.re;
-    assert!(below > 0.0 && above < 0.0, "r_p at θB ∓ 1e-12: {below:e}, {above:e}");
-    assert!(below.abs() < 2e-12 && above.abs() < 2e-12, "|r_p| near θB: {below:e}, {above:e}");
+    assert!(
+        below > 0.0 && above < 0.0,
+        "r_p at θB ∓ 1e-12: {below:e}, {above:e}"
+    );
+    assert!(
+        below.abs() < 2e-12 && above.abs() < 2e-12,
+        "|r_p| near θB: {below:e}, {above:e}"
+    );
     // Critical angle ± 1e-12 (glass → air): |r| = 1 above; below, 1 − |r_s| ~ sqrt(ε) small;
     // no NaN on either side.
     let tc = critical_angle(1.5, 1.0).unwrap();
     for (theta, tir) in [(tc - 1e-12, false), (tc + 1e-12, true)] {
         let f = fresnel(1.5, 1.0, theta.cos());
-        assert_eq!(f.total_internal_reflection, tir, "θc {}", if tir { "+ ε" } else { "− ε" });
+        assert_eq!(
+            f.total_internal_reflection,
+            tir,
+            "θc {}",
+            if tir { "+ ε" } else { "− ε" }
+        );
         for r in [f.r_s, f.r_p, f.t_s, f.t_p] {
-            assert!(r.re.is_finite() && r.im.is_finite(), "non-finite coefficient at θc ± ε");
+            assert!(
+                r.re.is_finite() && r.im.is_finite(),
+                "non-finite coefficient at θc ± ε"
+            );
         }
-        assert!((f.r_s.norm() - 1.0).abs() < 1e-5, "|r_s| at θc ± ε: {}", f.r_s.norm());
+        assert!(
+            (f.r_s.norm() - 1.0).abs() < 1e-5,
+            "|r_s| at θc ± ε: {}",
+            f.r_s.norm()
+        );
     }
     // 89.9999° and exactly grazing: r_s → −1 linearly, r_s ≈ −1 + 2 cos θ/sqrt(n² − 1)
     // (first-order expansion of P1 in cos θ for n1 = 1).
     let c = (89.9999f64).to_radians().cos();
     let f = fresnel(1.0, 1.5, c);
     let expected = -1.0 + 2.0 * c / (1.5f64 * 1.5 - 1.0).sqrt();
-    assert!((f.r_s.re - expected).abs() < 1e-10, "r_s at 89.9999°: {:e}, expected {expected:e}", f.r_s.re);
+    assert!(
+        (f.r_s.re - expected).abs() < 1e-10,
+        "r_s at 89.9999°: {:e}, expected {expected:e}",
+        f.r_s.re
+    );
     let g = fresnel(1.0, 1.5, 0.0);
     assert_eq!((g.r_s.re, g.r_p.re), (-1.0, -1.0), "exactly grazing");
     let p = g.power(1.0, 1.5, 0.0);
@@ -99,25 +158,39 @@ fn nearly_equal_and_large_indices() {
     // n1 = n2: no interface at every angle including grazing.
     for c in [0.0, 0.3, 1.0] {
         let f = fresnel(1.5, 1.5, c);
-        assert!(f.r_s.norm() == 0.0 && f.r_p.norm() == 0.0 && (f.t_s.re - 1.0).abs() == 0.0, "n1 = n2 at cos θ = {c}");
+        assert!(
+            f.r_s.norm() == 0.0 && f.r_p.norm() == 0.0 && (f.t_s.re - 1.0).abs() == 0.0,
+            "n1 = n2 at cos θ = {c}"
+        );
     }
     // n2 − n1 = 1e-12 at normal incidence: r = −Δn/(2n + Δn) exactly (P1); the cosine form keeps
     // the digits because cos²θt is formed from (n2 − n1)(n2 + n1).
     let (n1, dn) = (1.5, 1e-12);
     let f = fresnel(n1, n1 + dn, 1.0);
     let exact = -dn / (2.0 * n1 + dn);
-    assert!((f.r_s.re / exact - 1.0).abs() < 1e-3, "r_s {:e}, expected {exact:e}", f.r_s.re);
+    assert!(
+        (f.r_s.re / exact - 1.0).abs() < 1e-3,
+        "r_s {:e}, expected {exact:e}",
+        f.r_s.re
+    );
     // ... and at 60°: first order in Δn, r_s ≈ −Δn/(2 n cos²θ) (derivative of P1 with Snell).
     let c = 0.5;
     let f = fresnel(n1, n1 + dn, c);
     let approx = -dn / (2.0 * n1 * c * c);
-    assert!((f.r_s.re / approx - 1.0).abs() < 1e-3, "r_s at 60°: {:e}, expected {approx:e}", f.r_s.re);
+    assert!(
+        (f.r_s.re / approx - 1.0).abs() < 1e-3,
+        "r_s at 60°: {:e}, expected {approx:e}",
+        f.r_s.re
+    );
     // n up to 4: R + T = 1.
     for n2 in [3.0, 4.0] {
         for c in [1.0, 0.5, 0.01] {
             let f = fresnel(1.0, n2, c);
             let p = f.power(1.0, n2, c);
-            assert!((p.r_s + p.t_s - 1.0).abs() < 1e-14 && (p.r_p + p.t_p - 1.0).abs() < 1e-14, "n = {n2}, cos θ = {c}");
+            assert!(
+                (p.r_s + p.t_s - 1.0).abs() < 1e-14 && (p.r_p + p.t_p - 1.0).abs() < 1e-14,
+                "n = {n2}, cos θ = {c}"
+            );
         }
     }
 }
@@ -134,8 +207,13 @@ fn path_differences_from_1_nm_to_10_m() {
         for (k, x) in [0.0, dx].into_iter().enumerate() {
             scene.sources.push(Source {
                 name: format!("s{k}"),
-                emitter: Emitter::Point { position: DVec3::new(-x, 0.0, 0.0) },
-                polarization: Polarization::Linear { reference: DVec3::Z, angle_rad: 0.0 },
+                emitter: Emitter::Point {
+                    position: DVec3::new(-x, 0.0, 0.0),
+                },
+                polarization: Polarization::Linear {
+                    reference: DVec3::Z,
+                    angle_rad: 0.0,
+                },
                 intensity: 1.0,
                 coherence_group: 0,
                 coherence_length_m: f64::INFINITY,
@@ -145,16 +223,28 @@ fn path_differences_from_1_nm_to_10_m() {
         let optics = scene.optics(lambda).unwrap();
         let limits = EnumerationLimits::default();
         let plan = trace::plan(&scene, &optics, &[p], &limits);
-        let (arr, _) = trace::arrivals(&scene, &optics, &plan, &Target::Point(p), &TraceSettings::default());
+        let (arr, _) = trace::arrivals(
+            &scene,
+            &optics,
+            &plan,
+            &Target::Point(p),
+            &TraceSettings::default(),
+        );
         assert_eq!(arr.len(), 2);
         let traced = arr[1].path.optical_path_m - arr[0].path.optical_path_m;
         let exact = dx; // collinear: r2 − r1 = dx exactly
         let phase_err = std::f64::consts::TAU * (traced - exact).abs() / lambda;
         let allowed = if distance <= 1.0 { 1e-6 } else { 1e-5 };
-        assert!(phase_err <= allowed, "distance {distance} m: phase error {phase_err:e} rad (traced Δs {traced:e}, exact {exact:e})");
+        assert!(
+            phase_err <= allowed,
+            "distance {distance} m: phase error {phase_err:e} rad (traced Δs {traced:e}, exact {exact:e})"
+        );
         let i = trace::intensity(&arr, Fidelity::Vector);
         let expected = 2.0 + 2.0 * (std::f64::consts::TAU * exact / lambda).cos();
-        assert!((i - expected).abs() < 4.0 * phase_err.max(1e-12) + 1e-12, "I = {i}, expected {expected}");
+        assert!(
+            (i - expected).abs() < 4.0 * phase_err.max(1e-12) + 1e-12,
+            "I = {i}, expected {expected}"
+        );
     }
 }
 
@@ -165,10 +255,18 @@ fn films_from_a_tenth_of_a_nanometre_to_a_millimetre() {
     let lambda = 550e-9;
     for d in [1e-10, 1e-8, 1e-6, 1e-3] {
         for theta in [0.0f64, 1.0] {
-            let film = Film { n1: 1.0, n2: 1.5, n3: 1.33, thickness_m: d };
+            let film = Film {
+                n1: 1.0,
+                n2: 1.5,
+                n3: 1.33,
+                thickness_m: d,
+            };
             let exact = film.reflectance(theta.cos(), lambda, Pol::S);
             let traced = traced_film([1.0, 1.5, 1.33], d, theta, lambda, 0.0, 15, true);
-            assert!((traced - exact).abs() < 1e-9 * exact.max(1e-3), "d = {d:e}, θ = {theta}: traced {traced:e}, Airy {exact:e}");
+            assert!(
+                (traced - exact).abs() < 1e-9 * exact.max(1e-3),
+                "d = {d:e}, θ = {theta}: traced {traced:e}, Airy {exact:e}"
+            );
         }
     }
 }
@@ -179,7 +277,12 @@ fn films_from_a_tenth_of_a_nanometre_to_a_millimetre() {
 #[test]
 fn high_finesse_bound_is_honest() {
     let lambda = 550e-9;
-    let film = Film { n1: 1.0, n2: 1.5, n3: 1.0, thickness_m: 1e-6 };
+    let film = Film {
+        n1: 1.0,
+        n2: 1.5,
+        n3: 1.0,
+        thickness_m: 1e-6,
+    };
     let theta = 85f64.to_radians();
     let c = theta.cos();
     let r_exact = film.r(c, lambda, Pol::S).norm();
@@ -187,12 +290,27 @@ fn high_finesse_bound_is_honest() {
     for orders in [2usize, 5, 10, 20, 40] {
         let tau = film.r_tail_bound(c, lambda, Pol::S, orders);
         let bound = 2.0 * r_exact * tau + tau * tau;
-        let traced = traced_film([1.0, 1.5, 1.0], 1e-6, theta, lambda, 0.0, 2 * orders - 1, true);
-        assert!((traced - exact).abs() <= bound * (1.0 + 1e-9) + 1e-15, "{orders} orders: |R_N − R| = {:e} > bound {bound:e}", (traced - exact).abs());
+        let traced = traced_film(
+            [1.0, 1.5, 1.0],
+            1e-6,
+            theta,
+            lambda,
+            0.0,
+            2 * orders - 1,
+            true,
+        );
+        assert!(
+            (traced - exact).abs() <= bound * (1.0 + 1e-9) + 1e-15,
+            "{orders} orders: |R_N − R| = {:e} > bound {bound:e}",
+            (traced - exact).abs()
+        );
     }
     let n = film.orders_for_bound(c, lambda, Pol::S, 1e-12);
     let traced = traced_film([1.0, 1.5, 1.0], 1e-6, theta, lambda, 0.0, 2 * n - 1, true);
-    assert!((traced - exact).abs() < 1e-11, "auto orders {n}: traced {traced:e}, Airy {exact:e}");
+    assert!(
+        (traced - exact).abs() < 1e-11,
+        "auto orders {n}: traced {traced:e}, Airy {exact:e}"
+    );
 }
 
 proptest! {

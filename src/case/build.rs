@@ -457,6 +457,70 @@ pub fn probe_points(probe: &Probe) -> Vec<ProbePoint> {
             overrides: Overrides::default(),
             observer: observe.clone(),
         }],
+        Probe::Grid {
+            center_m,
+            u_axis,
+            v_axis,
+            size_m,
+            pixels,
+            looks_toward,
+        } => {
+            let g = GridGeometry::new(v(center_m), v(u_axis), v(v_axis), *size_m, *pixels);
+            (0..pixels[0] * pixels[1])
+                .map(|k| ProbePoint {
+                    coordinate: k as f64,
+                    overrides: Overrides::default(),
+                    observer: Observer::Point {
+                        position_m: g.position(k % pixels[0], k / pixels[0]).to_array(),
+                        looks_toward: *looks_toward,
+                    },
+                })
+                .collect()
+        }
+    }
+}
+
+/// The pixel centres of a [`Probe::Grid`] rectangle: `columns` × `rows` pixels, row 0 at the top.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct GridGeometry {
+    /// Centre of pixel (0, 0), the top-left one (m).
+    pub origin: DVec3,
+    /// From one column to the next (m).
+    pub step_col: DVec3,
+    /// From one row to the next, downwards (m).
+    pub step_row: DVec3,
+    pub columns: usize,
+    pub rows: usize,
+}
+
+impl GridGeometry {
+    /// The rectangle of `size_m` = [width, height] centred on `center`, width along `u_axis`,
+    /// height along `v_axis` made perpendicular to it, split into `pixels` = [columns, rows].
+    pub fn new(
+        center: DVec3,
+        u_axis: DVec3,
+        v_axis: DVec3,
+        size_m: [f64; 2],
+        pixels: [usize; 2],
+    ) -> Self {
+        let u = u_axis.normalize();
+        let w = (v_axis - v_axis.dot(u) * u).normalize();
+        let step_col = size_m[0] / pixels[0] as f64 * u;
+        let step_row = -(size_m[1] / pixels[1] as f64) * w;
+        GridGeometry {
+            origin: center - 0.5 * size_m[0] * u
+                + 0.5 * size_m[1] * w
+                + 0.5 * (step_col + step_row),
+            step_col,
+            step_row,
+            columns: pixels[0],
+            rows: pixels[1],
+        }
+    }
+
+    /// Centre of pixel (`col`, `row`) (m).
+    pub fn position(&self, col: usize, row: usize) -> DVec3 {
+        self.origin + col as f64 * self.step_col + row as f64 * self.step_row
     }
 }
 

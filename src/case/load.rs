@@ -20,6 +20,16 @@ pub mod limits {
     pub const MAX_LENGTH_M: f64 = 1.0e3;
     /// Refractive indices accepted.
     pub const INDEX: (f64, f64) = (1.0e-3, 10.0);
+    /// Probe points × spectral samples per case (the number of traced point-wavelength pairs).
+    pub const MAX_POINT_SAMPLES: usize = 10_000_000;
+    /// Largest `coherence_group` of a source.
+    pub const MAX_COHERENCE_GROUP: u64 = 1_000_000_000;
+    /// Largest `tir_count` of a `rhomb_retardance` reference.
+    pub const MAX_TIR_COUNT: usize = 100;
+    /// Largest case file (bytes).
+    pub const MAX_FILE_BYTES: u64 = 16 << 20;
+    /// Directions (normals, axes, polarization references) must have a length in this range.
+    pub const DIRECTION_LENGTH: (f64, f64) = (1.0e-12, 1.0e12);
 }
 
 /// A case-file error: file, JSON path, message.
@@ -53,39 +63,66 @@ pub struct Case {
 
 /// Read, parse and validate a case file.
 pub fn load(path: &Path) -> Result<Case, CaseError> {
-    let err = |json_path: &str, message: String| CaseError {
+    let err = |message: String| CaseError {
         file: path.to_path_buf(),
-        json_path: json_path.into(),
+        json_path: "$".into(),
         message,
     };
-    let text = std::fs::read_to_string(path)
-        .map_err(|e| err("$", format!("cannot read the file: {e}")))?;
+    let meta = std::fs::metadata(path).map_err(|e| err(format!("cannot read the file: {e}")))?;
+    if !meta.is_file() {
+        return Err(err("not a regular file".into()));
+    }
+    if meta.len() > limits::MAX_FILE_BYTES {
+        return Err(err(format!(
+            "a case file is at most {} bytes, this one has {}",
+            limits::MAX_FILE_BYTES,
+            meta.len()
+        )));
+    }
+    let bytes = std::fs::read(path).map_err(|e| err(format!("cannot read the file: {e}")))?;
+    let text = String::from_utf8(bytes).map_err(|e| {
+        err(format!(
+            "the file is not UTF-8 text (invalid byte at offset {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })?;
     parse(path, &text)
 }
 
 /// Parse and validate case text (the file name is used in errors only).
 pub fn parse(path: &Path, text: &str) -> Result<Case, CaseError> {
+    let err = |(json_path, message): (String, String)| CaseError {
+        file: path.to_path_buf(),
+        json_path,
+        message,
+    };
+    // A UTF-8 byte-order mark (some editors write one) is not an error.
+    let text = text.strip_prefix('\u{feff}').unwrap_or(text);
+    if let Some(c) = text.trim_start().chars().next().filter(|c| *c != '{') {
+        return Err(err((
+            "$".into(),
+            format!(
+                "a case file is one JSON object {{\"name\": …, \"light\": …, …}}; this file starts with {c:?}"
+            ),
+        )));
+    }
     let de = &mut serde_json::Deserializer::from_str(text);
-    let spec: CaseFile = serde_path_to_error::deserialize(de).map_err(|e| {
-        let p = e.path().to_string();
-        CaseError {
-            file: path.to_path_buf(),
-            json_path: if p == "." {
-                "$".into()
-            } else {
-                format!("$.{p}")
-            },
-            message: e.into_inner().to_string(),
-        }
+    let spec: CaseFile =
+        serde_path_to_error::deserialize(&mut *de).map_err(|e| err(serde_error(text, e)))?;
+    de.end().map_err(|e| {
+        err((
+            "$".into(),
+            format!(
+                "malformed JSON: text after the case object (line {}, column {}); a case file holds one JSON object",
+                e.line(),
+                e.column()
+            ),
+        ))
     })?;
     let mut v = Validator { errors: Vec::new() };
     v.case(&spec);
     match v.errors.into_iter().next() {
-        Some((json_path, message)) => Err(CaseError {
-            file: path.to_path_buf(),
-            json_path,
-            message,
-        }),
+        Some(e) => Err(err(e)),
         None => Ok(Case {
             file: path.to_path_buf(),
             spec,
@@ -93,8 +130,193 @@ pub fn parse(path: &Path, text: &str) -> Result<Case, CaseError> {
     }
 }
 
+/// What is allowed for a key, by its name, where serde's message alone does not say it.
+fn allowed(key: &str) -> Option<String> {
+    Some(match key {
+        "count" => format!("1 to {} probe points", limits::MAX_PROBE_POINTS),
+        "pixels" => format!(
+            "[columns, rows], whole numbers ≥ 1 with at most {} points in all",
+            limits::MAX_PROBE_POINTS
+        ),
+        "samples" => format!("2 to {} spectral samples", limits::MAX_SPECTRAL_SAMPLES),
+        "max_internal_reflections" => format!("0 to {}", limits::MAX_INTERNAL_REFLECTIONS),
+        "tir_count" => format!("1 to {}", limits::MAX_TIR_COUNT),
+        "coherence_group" => format!("0 to {}", limits::MAX_COHERENCE_GROUP),
+        "n" | "index_override" => format!(
+            "a real refractive index in [{}, {}]; complex (lossy) indices are out of scope",
+            limits::INDEX.0,
+            limits::INDEX.1
+        ),
+        _ => return None,
+    })
+}
+
+/// The JSON value at a serde_path_to_error path (`a.b[2].c`), if the text is valid JSON.
+fn value_at<'v>(root: &'v serde_json::Value, path: &str) -> Option<&'v serde_json::Value> {
+    let mut v = root;
+    for seg in path.split('.').filter(|s| !s.is_empty()) {
+        let (key, rest) = match seg.find('[') {
+            Some(i) => (&seg[..i], &seg[i..]),
+            None => (seg, ""),
+        };
+        if !key.is_empty() {
+            v = v.get(key)?;
+        }
+        for idx in rest.split('[').filter(|s| !s.is_empty()) {
+            v = v.get(idx.trim_end_matches(']').parse::<usize>().ok()?)?;
+        }
+    }
+    Some(v)
+}
+
+/// Turn a serde error into (JSON path, message saying what is wrong and what is allowed).
+fn serde_error(text: &str, e: serde_path_to_error::Error<serde_json::Error>) -> (String, String) {
+    use serde_json::error::Category;
+    // serde_path_to_error writes `?` for a segment it could not name (a map key that failed to
+    // parse, or the next element after a syntax error).
+    let mut raw = e.path().to_string();
+    let e = e.into_inner();
+    let full = e.to_string();
+    let (line, column) = (e.line(), e.column());
+    let msg = match full.rfind(" at line ") {
+        Some(i) if line > 0 => full[..i].to_string(),
+        _ => full.clone(),
+    };
+    let tick = |m: &str, prefix: &str| -> Option<String> {
+        let rest = m.strip_prefix(prefix)?;
+        Some(rest[..rest.find('`')?].to_string())
+    };
+    // An unparseable map key (a fidelity name in `tolerances`): name it in the path.
+    if raw.ends_with('?') {
+        raw.truncate(raw.len() - 1);
+        if let Some(k) = tick(&msg, "unknown variant `") {
+            raw.push_str(&k);
+        }
+    }
+    let mut raw = raw.trim_end_matches('.').to_string();
+    if raw == "." {
+        raw.clear();
+    }
+    let key = raw
+        .rsplit('.')
+        .next()
+        .unwrap_or("")
+        .split('[')
+        .next()
+        .unwrap_or("")
+        .to_string();
+    let nice_expected = |x: &str| -> String {
+        match x {
+            "f64" => "a number".into(),
+            "usize" | "u64" => "a whole number ≥ 0 (no decimal point or exponent)".into(),
+            "a boolean" => "true or false".into(),
+            _ => x.to_string(),
+        }
+    };
+    let mut message = if msg == "number out of range" {
+        "the number is out of range: write a finite number (64-bit floats reach ±1.8e308, 1e999 is not one)".to_string()
+    } else if let Some(k) = tick(&msg, "missing field `") {
+        raw = format!("{raw}.{k}");
+        format!("missing required key `{k}`")
+    } else if let Some(k) = tick(&msg, "duplicate field `") {
+        format!("the key `{k}` appears twice in one object")
+    } else if let Some(rest) = msg.strip_prefix("invalid type: ") {
+        match rest.rsplit_once(", expected ") {
+            Some((got, want)) => format!("expected {}, got {got}", nice_expected(want)),
+            None => msg.clone(),
+        }
+    } else if let Some(rest) = msg.strip_prefix("invalid value: ") {
+        match rest.rsplit_once(", expected ") {
+            Some((got, want)) => format!("expected {}, got {got}", nice_expected(want)),
+            None => msg.clone(),
+        }
+    } else {
+        match e.classify() {
+            Category::Eof => format!("malformed JSON: the file ends early ({msg})"),
+            Category::Syntax => {
+                let parsed = serde_json::from_str::<serde_json::Value>(text);
+                match parsed.as_ref().ok().map(|v| (v, value_at(v, &raw))) {
+                    // Valid JSON that the case format cannot read here: the structure is wrong.
+                    Some((v, _)) if raw.is_empty() && !v.is_object() => {
+                        "a case file is one JSON object {\"name\": …, \"light\": …, …}".to_string()
+                    }
+                    Some((_, Some(serde_json::Value::Object(o)))) if o.len() != 1 => format!(
+                        "an object naming its kind must have exactly one key (the kind, e.g. {{\"monochrome\": {{…}}}}), got {} keys {:?}",
+                        o.len(),
+                        o.keys().collect::<Vec<_>>()
+                    ),
+                    Some(_) => format!("this value does not fit the case format here ({msg})"),
+                    None => format!("malformed JSON: {msg}"),
+                }
+            }
+            _ => msg.clone(),
+        }
+    };
+    if let Some(a) = allowed(&key) {
+        message = format!("{message}; allowed: {a}");
+    }
+    if line > 0 {
+        message = format!("{message} (line {line}, column {column})");
+    }
+    let json_path = if raw.is_empty() {
+        "$".to_string()
+    } else if raw.starts_with('[') || raw.starts_with('.') {
+        format!("${raw}")
+    } else {
+        format!("$.{raw}")
+    };
+    (json_path, message)
+}
+
 struct Validator {
     errors: Vec<(String, String)>,
+}
+
+/// The unit vector of a valid direction, `None` if it cannot be normalized.
+fn unit(v: &Vec3) -> Option<glam::DVec3> {
+    let (lo, hi) = limits::DIRECTION_LENGTH;
+    let d = glam::DVec3::from_array(*v);
+    let len = d.length();
+    (len.is_finite() && len >= lo && len <= hi).then(|| d / len)
+}
+
+/// A number for a message: plain in [1e-3, 1e6), else in exponent form (1e-15, not 0.000…1).
+fn num(x: f64) -> String {
+    if x == 0.0 || (x.abs() >= 1e-3 && x.abs() < 1e6) {
+        format!("{x}")
+    } else {
+        format!("{x:e}")
+    }
+}
+
+/// The number of probe points of a probe (saturating: a grid's product cannot overflow).
+pub fn probe_point_count(p: &Probe) -> usize {
+    match p {
+        Probe::Line { count, .. } | Probe::Sweep { count, .. } => *count,
+        Probe::Single { .. } => 1,
+        Probe::Grid { pixels, .. } => pixels[0].saturating_mul(pixels[1]),
+    }
+}
+
+/// Surface and source names: 1–64 characters from [A-Za-z0-9_-].
+fn name_ok(n: &str) -> bool {
+    !n.is_empty()
+        && n.len() <= 64
+        && n.chars()
+            .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
+}
+
+/// The serde tag of a surface (`plate`, `mirror`, …), for JSON paths.
+fn surface_kind(s: &SurfaceSpec) -> &'static str {
+    match s {
+        SurfaceSpec::Interface { .. } => "interface",
+        SurfaceSpec::Plate { .. } => "plate",
+        SurfaceSpec::Wedge { .. } => "wedge",
+        SurfaceSpec::Mirror { .. } => "mirror",
+        SurfaceSpec::Splitter { .. } => "splitter",
+        SurfaceSpec::Shield { .. } => "shield",
+        SurfaceSpec::OpaqueScreen { .. } => "opaque_screen",
+    }
 }
 
 impl Validator {
@@ -112,13 +334,24 @@ impl Validator {
 
     fn range(&mut self, path: &str, x: f64, lo: f64, hi: f64, what: &str) {
         if self.finite(path, x) && !(x >= lo && x <= hi) {
-            self.fail(path, format!("{what} must be in [{lo}, {hi}], got {x}"));
+            self.fail(
+                path,
+                format!(
+                    "{what} must be in [{}, {}], got {}",
+                    num(lo),
+                    num(hi),
+                    num(x)
+                ),
+            );
         }
     }
 
     fn positive(&mut self, path: &str, x: f64, hi: f64, what: &str) {
         if self.finite(path, x) && !(x > 0.0 && x <= hi) {
-            self.fail(path, format!("{what} must be > 0 and ≤ {hi}, got {x}"));
+            self.fail(
+                path,
+                format!("{what} must be > 0 and ≤ {}, got {}", num(hi), num(x)),
+            );
         }
     }
 
@@ -134,11 +367,38 @@ impl Validator {
         }
     }
 
-    fn direction(&mut self, path: &str, v: &Vec3) {
+    /// A direction: finite, not zero, not so small or large that normalizing it fails.
+    fn direction(&mut self, path: &str, v: &Vec3) -> bool {
+        let (lo, hi) = limits::DIRECTION_LENGTH;
         if v.iter().any(|x| !x.is_finite()) {
             self.fail(path, "a direction must have finite components");
-        } else if glam::DVec3::from_array(*v).length() < 1e-12 {
+            return false;
+        }
+        let len = glam::DVec3::from_array(*v).length();
+        if len == 0.0 {
             self.fail(path, "a direction must not be the zero vector");
+            false
+        } else if !(len >= lo && len <= hi) {
+            self.fail(
+                path,
+                format!("a direction must have a length in [{lo:e}, {hi:e}], got {len:e}"),
+            );
+            false
+        } else {
+            true
+        }
+    }
+
+    /// `a` (at `path`) must not be parallel to `b` (both valid directions, else no verdict).
+    fn not_parallel(&mut self, path: &str, a: &Vec3, b: &Vec3, what: &str) {
+        let (x, y) = (unit(a), unit(b));
+        if let (Some(x), Some(y)) = (x, y) {
+            if x.cross(y).length() < 1e-9 {
+                self.fail(
+                    path,
+                    format!("{what}: the two are parallel, {a:?} and {b:?}"),
+                );
+            }
         }
     }
 
@@ -167,19 +427,12 @@ impl Validator {
             );
         }
         self.direction(&format!("{path}.u_axis"), &r.u_axis);
-        let (u, n) = (
-            glam::DVec3::from_array(r.u_axis),
-            glam::DVec3::from_array(*normal),
+        self.not_parallel(
+            &format!("{path}.u_axis"),
+            &r.u_axis,
+            normal,
+            "u_axis must not be parallel to the surface normal",
         );
-        if u.length() > 0.0
-            && n.length() > 0.0
-            && u.normalize().cross(n.normalize()).length() < 1e-9
-        {
-            self.fail(
-                &format!("{path}.u_axis"),
-                "u_axis must not be parallel to the surface normal",
-            );
-        }
     }
 
     fn case(&mut self, c: &CaseFile) {
@@ -195,12 +448,34 @@ impl Validator {
         self.light(&c.light);
         self.scene(&c.scene);
         self.probe(&c.probe, &c.scene);
+        if let Some(f) = &c.fidelities {
+            if f.is_empty() {
+                self.fail(
+                    "$.fidelities",
+                    "list at least one fidelity level, or omit the key for all",
+                );
+            }
+            if !f.contains(&crate::fidelity::Fidelity::Vector) {
+                self.fail(
+                    "$.fidelities",
+                    "the `vector` level (the reference) must be run",
+                );
+            }
+            for (k, level) in f.iter().enumerate() {
+                if f[..k].contains(level) {
+                    self.fail(
+                        &format!("$.fidelities[{k}]"),
+                        format!("level `{level}` is listed twice"),
+                    );
+                }
+            }
+        }
         if c.references.is_empty() {
             self.fail("$.references", "at least one reference is required");
         }
         let mut labels = std::collections::BTreeSet::new();
         for (i, r) in c.references.iter().enumerate() {
-            self.reference(&format!("$.references[{i}]"), r, &c.scene);
+            self.reference(&format!("$.references[{i}]"), r, &c.scene, &c.light);
             let label = r
                 .label
                 .clone()
@@ -223,19 +498,15 @@ impl Validator {
                     ),
                 );
             }
-        }
-        if let Some(f) = &c.fidelities {
-            if f.is_empty() {
-                self.fail(
-                    "$.fidelities",
-                    "list at least one fidelity level, or omit the key for all",
-                );
-            }
-            if !f.contains(&crate::fidelity::Fidelity::Vector) {
-                self.fail(
-                    "$.fidelities",
-                    "the `vector` level (the reference) must be run",
-                );
+            if let Some(f) = &c.fidelities {
+                for level in r.tolerances.keys() {
+                    if !f.contains(level) {
+                        self.fail(
+                            &format!("$.references[{i}].tolerances.{level}"),
+                            format!("a tolerance for level `{level}`, which $.fidelities does not run: add `{level}` to $.fidelities or drop the tolerance"),
+                        );
+                    }
+                }
             }
         }
         let t = &c.trace;
@@ -257,6 +528,16 @@ impl Validator {
                 0.5,
                 "the Airy tail bound",
             );
+            if !c
+                .references
+                .iter()
+                .any(|r| matches!(r.model, ReferenceModel::Airy { .. }))
+            {
+                self.fail(
+                    "$.trace.airy_tail_epsilon",
+                    "needs an `airy` reference naming the film whose tail it bounds (or use max_internal_reflections)",
+                );
+            }
         }
         self.range(
             "$.trace.golden_tolerance",
@@ -265,6 +546,153 @@ impl Validator {
             1.0,
             "the golden tolerance",
         );
+        // Checks across sections need every field in range first.
+        if self.errors.is_empty() {
+            self.cross(c);
+        }
+    }
+
+    /// Checks that combine sections of a field-by-field valid case: the sampled spectrum, the
+    /// media at every wavelength the case uses, the work cap, where the sources sit.
+    fn cross(&mut self, c: &CaseFile) {
+        let s = &c.scene;
+        // The wavelengths the case traces (nm): its spectrum, or the points of a wavelength sweep.
+        let spectrum_nm: Vec<f64> = super::build::spectrum(&c.light, &Default::default())
+            .iter()
+            .map(|(l, _)| l * 1e9)
+            .collect();
+        let (lo, hi) = limits::WAVELENGTH_NM;
+        if let Light::Gaussian { .. } = c.light {
+            let min = spectrum_nm.iter().copied().fold(f64::INFINITY, f64::min);
+            let max = spectrum_nm
+                .iter()
+                .copied()
+                .fold(f64::NEG_INFINITY, f64::max);
+            if spectrum_nm
+                .iter()
+                .any(|l| !(l.is_finite() && *l >= lo && *l <= hi))
+            {
+                self.fail(
+                    "$.light.gaussian",
+                    format!("the sampled spectrum (±sigmas standard deviations around center_nm) spans {min:.6} to {max:.6} nm; it must lie within [{lo}, {hi}] nm: reduce fwhm_nm or sigmas"),
+                );
+                return;
+            }
+        }
+        let points = probe_point_count(&c.probe);
+        if points.saturating_mul(spectrum_nm.len()) > limits::MAX_POINT_SAMPLES {
+            let key = match &c.probe {
+                Probe::Line { .. } => "$.probe.line.count",
+                Probe::Sweep { .. } => "$.probe.sweep.count",
+                Probe::Grid { .. } => "$.probe.grid.pixels",
+                Probe::Single { .. } => "$.probe",
+            };
+            self.fail(
+                key,
+                format!(
+                    "probe points × spectral samples must be at most {}, got {points} × {}",
+                    limits::MAX_POINT_SAMPLES,
+                    spectrum_nm.len()
+                ),
+            );
+        }
+        let has_plane_wave = s
+            .sources
+            .iter()
+            .any(|x| matches!(x.emitter, EmitterSpec::PlaneWave { .. }));
+        let observer = match &c.probe {
+            Probe::Sweep { observe, .. } => Some(("$.probe.sweep.observe", observe)),
+            Probe::Single { observe } => Some(("$.probe.single.observe", observe)),
+            _ => None,
+        };
+        if let Some((op, Observer::FarField { .. })) = observer {
+            if !has_plane_wave {
+                self.fail(
+                    &format!("{op}.far_field"),
+                    "a far_field observer needs a plane-wave source (it looks along the reflected or refracted plane wave)",
+                );
+            }
+        }
+        if let Probe::Sweep { parameter, .. } = &c.probe {
+            match parameter {
+                SweepParameter::IncidenceAngleDeg { .. } if !has_plane_wave => self.fail(
+                    "$.probe.sweep.parameter.incidence_angle_deg",
+                    "an incidence-angle sweep turns the plane-wave sources: the scene has none",
+                ),
+                SweepParameter::WavelengthNm {} if !matches!(c.light, Light::Monochrome { .. }) => {
+                    self.fail(
+                        "$.probe.sweep.parameter.wavelength_nm",
+                        "a wavelength sweep needs monochrome light (each point traces one wavelength)",
+                    )
+                }
+                _ => {}
+            }
+        }
+        let wavelengths: Vec<f64> = match &c.probe {
+            Probe::Sweep {
+                parameter: SweepParameter::WavelengthNm {},
+                ..
+            } => super::build::probe_points(&c.probe)
+                .iter()
+                .filter_map(|p| p.overrides.wavelength_m.map(|l| l * 1e9))
+                .collect(),
+            _ => spectrum_nm,
+        };
+        // Every medium the scene uses must have a real index in range at every wavelength.
+        let mut used: Vec<(&str, String)> = vec![(s.ambient.as_str(), "$.scene.ambient".into())];
+        for (i, surf) in s.surfaces.iter().enumerate() {
+            let q = format!("$.scene.surfaces[{i}].{}", surface_kind(surf));
+            match surf {
+                SurfaceSpec::Interface { front, back, .. } => {
+                    used.push((front, format!("{q}.front")));
+                    used.push((back, format!("{q}.back")));
+                }
+                SurfaceSpec::Plate {
+                    medium,
+                    above,
+                    below,
+                    ..
+                }
+                | SurfaceSpec::Wedge {
+                    medium,
+                    above,
+                    below,
+                    ..
+                } => {
+                    used.push((medium, format!("{q}.medium")));
+                    used.push((above, format!("{q}.above")));
+                    used.push((below, format!("{q}.below")));
+                }
+                _ => {}
+            }
+        }
+        let mut checked = std::collections::BTreeSet::new();
+        for (name, _) in used {
+            let Some(spec) = s.media.get(name) else {
+                continue;
+            };
+            if !checked.insert(name) {
+                continue;
+            }
+            let m = super::build::medium(name, spec);
+            let (ilo, ihi) = limits::INDEX;
+            for l in &wavelengths {
+                let bad = match m.index(l * 1e-9) {
+                    Err(e) => Some(format!("at the case's wavelength {l} nm: {e}")),
+                    Ok(n) if !(n >= ilo && n <= ihi) => Some(format!(
+                        "the index at the case's wavelength {l} nm is {n}, outside [{ilo}, {ihi}]"
+                    )),
+                    Ok(_) => None,
+                };
+                if let Some(msg) = bad {
+                    self.fail(&format!("$.scene.media.{name}"), msg);
+                    break;
+                }
+            }
+        }
+        for (i, src) in s.sources.iter().enumerate() {
+            self.placement(&format!("$.scene.sources[{i}]"), src, s);
+        }
     }
 
     fn light(&mut self, l: &Light) {
@@ -360,13 +788,20 @@ impl Validator {
         let mut names = std::collections::BTreeSet::new();
         for (i, surf) in s.surfaces.iter().enumerate() {
             let p = format!("$.scene.surfaces[{i}]");
+            let np = format!("{p}.{}.name", surface_kind(surf));
             if !names.insert(surf.name().to_string()) {
                 self.fail(
-                    &format!("{p}.name"),
+                    &np,
                     format!(
                         "surface names must be unique: {:?} appears twice",
                         surf.name()
                     ),
+                );
+            }
+            if !name_ok(surf.name()) {
+                self.fail(
+                    &np,
+                    format!("a surface name is 1–64 characters from [A-Za-z0-9_-] (a plate or wedge `p` has faces `p.top` and `p.bottom`), got {:?}", surf.name()),
                 );
             }
             self.surface(&p, surf, s);
@@ -377,13 +812,22 @@ impl Validator {
         let mut snames = std::collections::BTreeSet::new();
         for (i, src) in s.sources.iter().enumerate() {
             let p = format!("$.scene.sources[{i}]");
+            if !name_ok(&src.name) {
+                self.fail(
+                    &format!("{p}.name"),
+                    format!(
+                        "a source name is 1–64 characters from [A-Za-z0-9_-], got {:?}",
+                        src.name
+                    ),
+                );
+            }
             if !snames.insert(src.name.clone()) {
                 self.fail(
                     &format!("{p}.name"),
                     format!("source names must be unique: {:?} appears twice", src.name),
                 );
             }
-            self.source(&p, src, s);
+            self.source(&p, src);
         }
     }
 
@@ -443,6 +887,12 @@ impl Validator {
                 self.point(&format!("{q}.top_point_m"), top_point_m);
                 self.direction(&format!("{q}.normal"), normal);
                 self.direction(&format!("{q}.hinge_axis"), hinge_axis);
+                self.not_parallel(
+                    &format!("{q}.hinge_axis"),
+                    hinge_axis,
+                    normal,
+                    "the hinge axis must not be parallel to the wedge's normal",
+                );
                 self.positive(
                     &format!("{q}.thickness_um"),
                     *thickness_um,
@@ -516,6 +966,12 @@ impl Validator {
                 self.point(&format!("{q}.point_m"), point_m);
                 self.direction(&format!("{q}.normal"), normal);
                 self.direction(&format!("{q}.u_axis"), u_axis);
+                self.not_parallel(
+                    &format!("{q}.u_axis"),
+                    u_axis,
+                    normal,
+                    "u_axis must not be parallel to the screen's normal",
+                );
                 if let Some(r) = rect {
                     self.rect(&format!("{q}.rect"), r, normal);
                 }
@@ -548,7 +1004,7 @@ impl Validator {
         }
     }
 
-    fn source(&mut self, p: &str, src: &SourceSpec, s: &SceneSpec) {
+    fn source(&mut self, p: &str, src: &SourceSpec) {
         match &src.emitter {
             EmitterSpec::Point { position_m } => {
                 self.point(&format!("{p}.emitter.point.position_m"), position_m)
@@ -582,10 +1038,12 @@ impl Validator {
                     "a polarization angle (degrees)",
                 );
             }
-            PolarizationSpec::Unpolarized { reference } => self.direction(
-                &format!("{p}.polarization.unpolarized.reference"),
-                reference,
-            ),
+            PolarizationSpec::Unpolarized { reference } => {
+                self.direction(
+                    &format!("{p}.polarization.unpolarized.reference"),
+                    reference,
+                );
+            }
         }
         self.positive(
             &format!("{p}.intensity"),
@@ -593,6 +1051,16 @@ impl Validator {
             1e12,
             "a source intensity",
         );
+        if src.coherence_group > limits::MAX_COHERENCE_GROUP {
+            self.fail(
+                &format!("{p}.coherence_group"),
+                format!(
+                    "a coherence group is 0 to {}, got {}",
+                    limits::MAX_COHERENCE_GROUP,
+                    src.coherence_group
+                ),
+            );
+        }
         if let Some(l) = src.coherence_length_m {
             self.positive(
                 &format!("{p}.coherence_length_m"),
@@ -601,53 +1069,171 @@ impl Validator {
                 "a coherence length (m)",
             );
         }
-        // A point or line source must not sit on an interacting surface.
-        let anchor = match &src.emitter {
-            EmitterSpec::Point { position_m } => Some(*position_m),
-            EmitterSpec::Line { point_m, .. } => Some(*point_m),
-            EmitterSpec::PlaneWave { .. } => None,
+    }
+
+    /// Where a source sits relative to the surfaces (after every field is valid): not on a
+    /// surface, not inside a plate or wedge, in the ambient medium, a line source not crossing
+    /// an unbounded surface, and a plane wave's polarization reference not along its direction.
+    fn placement(&mut self, p: &str, src: &SourceSpec, s: &SceneSpec) {
+        use glam::DVec3;
+        let (pol_path, reference) = match &src.polarization {
+            PolarizationSpec::Linear { reference, .. } => {
+                (format!("{p}.polarization.linear.reference"), reference)
+            }
+            PolarizationSpec::Unpolarized { reference } => {
+                (format!("{p}.polarization.unpolarized.reference"), reference)
+            }
         };
-        if let Some(a) = anchor {
-            let a = glam::DVec3::from_array(a);
-            for surf in &s.surfaces {
-                let (pt, n) = match surf {
-                    SurfaceSpec::Interface {
-                        point_m, normal, ..
-                    }
-                    | SurfaceSpec::Mirror {
-                        point_m, normal, ..
-                    }
-                    | SurfaceSpec::Splitter {
-                        point_m, normal, ..
-                    }
-                    | SurfaceSpec::Shield {
-                        point_m, normal, ..
-                    }
-                    | SurfaceSpec::OpaqueScreen {
-                        point_m, normal, ..
-                    } => (*point_m, *normal),
-                    SurfaceSpec::Plate {
-                        top_point_m,
-                        normal,
-                        ..
-                    }
-                    | SurfaceSpec::Wedge {
-                        top_point_m,
-                        normal,
-                        ..
-                    } => (*top_point_m, *normal),
-                };
-                let n = glam::DVec3::from_array(n);
-                if n.length() > 0.0
-                    && (a - glam::DVec3::from_array(pt)).dot(n.normalize()).abs() < 1e-12
-                {
+        let (anchor, line_axis) = match &src.emitter {
+            EmitterSpec::Point { position_m } => (DVec3::from_array(*position_m), None),
+            EmitterSpec::Line { point_m, axis } => (DVec3::from_array(*point_m), unit(axis)),
+            EmitterSpec::PlaneWave { direction, .. } => {
+                self.not_parallel(
+                    &pol_path,
+                    reference,
+                    direction,
+                    "the polarization reference must not be parallel to the plane wave's direction (the field would be undefined)",
+                );
+                return;
+            }
+        };
+        let on = |x: f64| x.abs() < 1e-12;
+        for surf in &s.surfaces {
+            let name = surf.name();
+            // (plane point, unit normal, bounded?, medium in front, medium behind) per face.
+            let mut faces: Vec<(DVec3, DVec3, bool, Option<&str>, Option<&str>)> = Vec::new();
+            let mut slab = None;
+            match surf {
+                SurfaceSpec::Interface {
+                    point_m,
+                    normal,
+                    rect,
+                    front,
+                    back,
+                    ..
+                } => faces.push((
+                    DVec3::from_array(*point_m),
+                    unit(normal).unwrap_or(DVec3::Z),
+                    rect.is_some(),
+                    Some(front),
+                    Some(back),
+                )),
+                SurfaceSpec::Mirror {
+                    point_m,
+                    normal,
+                    rect,
+                    ..
+                }
+                | SurfaceSpec::Splitter {
+                    point_m,
+                    normal,
+                    rect,
+                    ..
+                }
+                | SurfaceSpec::OpaqueScreen {
+                    point_m,
+                    normal,
+                    rect,
+                    ..
+                } => faces.push((
+                    DVec3::from_array(*point_m),
+                    unit(normal).unwrap_or(DVec3::Z),
+                    rect.is_some(),
+                    None,
+                    None,
+                )),
+                SurfaceSpec::Shield {
+                    point_m, normal, ..
+                } => faces.push((
+                    DVec3::from_array(*point_m),
+                    unit(normal).unwrap_or(DVec3::Z),
+                    true,
+                    None,
+                    None,
+                )),
+                SurfaceSpec::Plate {
+                    top_point_m,
+                    normal,
+                    thickness_um,
+                    above,
+                    below,
+                    ..
+                } => {
+                    let (t, n) = (
+                        DVec3::from_array(*top_point_m),
+                        unit(normal).unwrap_or(DVec3::Z),
+                    );
+                    let b = t - thickness_um * 1e-6 * n;
+                    faces.push((t, n, false, Some(above), None));
+                    faces.push((b, n, false, None, Some(below)));
+                    slab = Some(((t, n), (b, n)));
+                }
+                SurfaceSpec::Wedge {
+                    top_point_m,
+                    normal,
+                    thickness_um,
+                    angle_deg,
+                    hinge_axis,
+                    above,
+                    below,
+                    ..
+                } => {
+                    let (t, n) = (
+                        DVec3::from_array(*top_point_m),
+                        unit(normal).unwrap_or(DVec3::Z),
+                    );
+                    let h = DVec3::from_array(*hinge_axis);
+                    let axis = (h - h.dot(n) * n).normalize_or_zero();
+                    let tilted = glam::DQuat::from_axis_angle(axis, angle_deg.to_radians()) * n;
+                    let b = t - thickness_um * 1e-6 * n;
+                    faces.push((t, n, false, Some(above), None));
+                    faces.push((b, tilted, false, None, Some(below)));
+                    slab = Some(((t, n), (b, tilted)));
+                }
+            }
+            for (pt, n, bounded, front, back) in faces {
+                let d = (anchor - pt).dot(n);
+                if on(d) {
                     self.fail(
                         &format!("{p}.emitter"),
-                        format!(
-                            "the source lies on surface {:?}: move it off the surface",
-                            surf.name()
-                        ),
+                        format!("the source lies on surface {name:?}: move it off the surface"),
                     );
+                    return;
+                }
+                if bounded {
+                    continue;
+                }
+                if let Some(a) = line_axis {
+                    if a.dot(n).abs() > 1e-9 {
+                        let kind = match &src.emitter {
+                            EmitterSpec::Line { .. } => "line",
+                            _ => "point",
+                        };
+                        self.fail(
+                            &format!("{p}.emitter.{kind}.axis"),
+                            format!("the line source crosses the unbounded surface {name:?}: its axis must be parallel to the surface"),
+                        );
+                        return;
+                    }
+                }
+                let side = if d > 0.0 { front } else { back };
+                if let Some(m) = side {
+                    if m != s.ambient {
+                        self.fail(
+                            &format!("{p}.emitter"),
+                            format!("the source is on the {m:?} side of surface {name:?}, but sources must be in the ambient medium {:?}", s.ambient),
+                        );
+                        return;
+                    }
+                }
+            }
+            if let Some(((t, n), (b, nb))) = slab {
+                if (anchor - t).dot(n) < 0.0 && (anchor - b).dot(nb) > 0.0 {
+                    self.fail(
+                        &format!("{p}.emitter"),
+                        format!("the source is inside {name:?} (between its faces); sources must be in the ambient medium {:?}", s.ambient),
+                    );
+                    return;
                 }
             }
         }
@@ -718,6 +1304,12 @@ impl Validator {
                             "$.probe.sweep.parameter.incidence_angle_deg.in_plane_axis",
                             in_plane_axis,
                         );
+                        self.not_parallel(
+                            "$.probe.sweep.parameter.incidence_angle_deg.in_plane_axis",
+                            in_plane_axis,
+                            surface_normal,
+                            "in_plane_axis must not be parallel to surface_normal (they span the plane of incidence)",
+                        );
                     }
                     SweepParameter::WavelengthNm {} => {
                         self.wavelength("$.probe.sweep.from", *from);
@@ -743,6 +1335,54 @@ impl Validator {
                 self.observer("$.probe.sweep.observe", observe, s);
             }
             Probe::Single { observe } => self.observer("$.probe.single.observe", observe, s),
+            Probe::Grid {
+                center_m,
+                u_axis,
+                v_axis,
+                size_m,
+                pixels,
+                looks_toward,
+            } => {
+                self.point("$.probe.grid.center_m", center_m);
+                self.direction("$.probe.grid.u_axis", u_axis);
+                self.direction("$.probe.grid.v_axis", v_axis);
+                let (u, w) = (
+                    glam::DVec3::from_array(*u_axis),
+                    glam::DVec3::from_array(*v_axis),
+                );
+                if u.length() > 0.0
+                    && w.length() > 0.0
+                    && u.normalize().cross(w.normalize()).length() < 1e-9
+                {
+                    self.fail(
+                        "$.probe.grid.v_axis",
+                        "v_axis must not be parallel to u_axis",
+                    );
+                }
+                for k in 0..2 {
+                    self.positive(
+                        &format!("$.probe.grid.size_m[{k}]"),
+                        size_m[k],
+                        2.0 * limits::MAX_LENGTH_M,
+                        "a size (m)",
+                    );
+                }
+                if pixels[0] == 0
+                    || pixels[1] == 0
+                    || pixels[0].saturating_mul(pixels[1]) > limits::MAX_PROBE_POINTS
+                {
+                    self.fail(
+                        "$.probe.grid.pixels",
+                        format!(
+                            "[columns, rows] ≥ 1 with at most {} points in all, got {pixels:?}",
+                            limits::MAX_PROBE_POINTS
+                        ),
+                    );
+                }
+                if let Some(l) = looks_toward {
+                    self.direction("$.probe.grid.looks_toward", l);
+                }
+            }
         }
     }
 
@@ -780,7 +1420,7 @@ impl Validator {
         }
     }
 
-    fn reference(&mut self, p: &str, r: &ReferenceSpec, s: &SceneSpec) {
+    fn reference(&mut self, p: &str, r: &ReferenceSpec, s: &SceneSpec, light: &Light) {
         if p.ends_with("[0]")
             && !r
                 .tolerances
@@ -795,12 +1435,22 @@ impl Validator {
                 self.fail(&tp, "a vector tolerance looser than 1e-9 needs a `tolerance_note` saying why it is physically forced");
             }
         }
+        if r.tolerance_note
+            .as_deref()
+            .is_some_and(|n| n.trim().is_empty())
+        {
+            self.fail(
+                &format!("{p}.tolerance_note"),
+                "a tolerance note says why the tolerance is physically forced: write it, or drop the key",
+            );
+        }
         let surface_exists = |name: &str| s.surfaces.iter().any(|x| x.name() == name);
+        let variant = super::reference::name(&r.model);
         let need = |v: &mut Self, key: &str, name: &str| {
             if !surface_exists(name) {
                 let known: Vec<&str> = s.surfaces.iter().map(|x| x.name()).collect();
                 v.fail(
-                    &format!("{p}.model.{key}"),
+                    &format!("{p}.model.{variant}.{key}"),
                     format!("no surface named {name:?}; surfaces: {known:?}"),
                 );
             }
@@ -812,12 +1462,19 @@ impl Validator {
             ReferenceModel::CoherenceGaussian { plate, fwhm_nm } => {
                 need(self, "plate", plate);
                 if let Some(f) = fwhm_nm {
-                    self.positive(
-                        &format!("{p}.model.coherence_gaussian.fwhm_nm"),
-                        *f,
-                        1000.0,
-                        "a bandwidth (nm)",
-                    );
+                    let fp = format!("{p}.model.coherence_gaussian.fwhm_nm");
+                    match light {
+                        Light::Gaussian { .. } => self.fail(
+                            &fp,
+                            "fwhm_nm is for monochromatic cases (to judge another coherence model); with Gaussian light the bandwidth is the light's: drop this key",
+                        ),
+                        Light::Monochrome { wavelength_nm } => self.positive(
+                            &fp,
+                            *f,
+                            0.2 * wavelength_nm.abs(),
+                            "a bandwidth (FWHM, nm, at most 20% of the wavelength)",
+                        ),
+                    }
                 }
             }
             ReferenceModel::Airy {
@@ -849,10 +1506,10 @@ impl Validator {
                     &s.media,
                 );
                 need(self, "tir_surface", tir_surface);
-                if *tir_count == 0 || *tir_count > 100 {
+                if *tir_count == 0 || *tir_count > limits::MAX_TIR_COUNT {
                     self.fail(
                         &format!("{p}.model.rhomb_retardance.tir_count"),
-                        "1 to 100 TIRs",
+                        format!("1 to {} TIRs, got {tir_count}", limits::MAX_TIR_COUNT),
                     );
                 }
             }

@@ -520,6 +520,13 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         },
         |a, o| trace::merge_needs(a, o.needs),
     );
+    let needs = SceneNeeds {
+        polarization_state: spec
+            .references
+            .iter()
+            .any(|r| reference::kind(&r.model) == MetricKind::Retardance),
+        ..needs
+    };
     let auto = fidelity::auto_select(&needs);
     let mut result = CaseResult {
         name: spec.name.clone(),

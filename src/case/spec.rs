@@ -327,6 +327,21 @@ pub enum Probe {
     },
     /// A single observation (e.g. a far-field direction).
     Single { observe: Observer },
+    /// A picture: `pixels` = [columns, rows] screen points at the pixel centres of the rectangle
+    /// of `size_m` = [width, height] centred on `center_m`, width along `u_axis` (left → right),
+    /// height along `v_axis` (bottom → top, made perpendicular to `u_axis`); row 0 is the top.
+    /// `fringe check` traces every point (coordinate: row-major pixel index); `fringe render`
+    /// draws it, optionally at another pixel count (`--size`).
+    Grid {
+        center_m: Vec3,
+        u_axis: Vec3,
+        v_axis: Vec3,
+        size_m: [f64; 2],
+        pixels: [usize; 2],
+        /// One-sided screen: records only rays travelling against this direction.
+        #[serde(default)]
+        looks_toward: Option<Vec3>,
+    },
 }
 
 /// A closed-form reference and its tolerances per fidelity level (relative deviation, see the

@@ -1,6 +1,11 @@
 //! Outputs of a check: the verdict table, CSV profiles, the JSON summary and golden files.
 //! Every file is written atomically (temporary file in the same folder, then rename).
 
+pub mod html;
+pub mod image;
+pub mod plot;
+pub mod tradeoff_plot;
+
 use crate::case::run::CaseResult;
 use crate::fidelity::Fidelity;
 use serde::Serialize;

@@ -16,7 +16,10 @@ fn err<E: std::fmt::Display>(e: E) -> String {
     format!("plot: {e}")
 }
 
-fn png(size: (u32, u32), draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>) -> Result<Vec<u8>, String> {
+fn png(
+    size: (u32, u32),
+    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
+) -> Result<Vec<u8>, String> {
     register_font();
     let mut buf = vec![255u8; size.0 as usize * size.1 as usize * 3];
     {
@@ -32,8 +35,14 @@ fn png(size: (u32, u32), draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift
 fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
         .filter(|v| v.is_finite() && *v > 0.0)
-        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| (lo.min(v), hi.max(v)));
-    if hi == 0.0 { (FLOOR, 1.0) } else { (lo.max(FLOOR) / 3.0, hi * 3.0) }
+        .fold((f64::INFINITY, 0.0f64), |(lo, hi), v| {
+            (lo.min(v), hi.max(v))
+        });
+    if hi == 0.0 {
+        (FLOOR, 1.0)
+    } else {
+        (lo.max(FLOOR) / 3.0, hi * 3.0)
+    }
 }
 
 /// Time vs max deviation of every setting of one case; the Pareto front joined, the tolerance
@@ -41,9 +50,16 @@ fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
     png((900, 560), |root| {
         let (x0, x1) = log_range(rows.iter().map(|r| r.seconds));
-        let (y0, y1) = log_range(rows.iter().map(|r| r.max_abs_dev.max(FLOOR)).chain(rows.iter().map(|r| r.tolerance)));
+        let (y0, y1) = log_range(
+            rows.iter()
+                .map(|r| r.max_abs_dev.max(FLOOR))
+                .chain(rows.iter().map(|r| r.tolerance)),
+        );
         let mut chart = ChartBuilder::on(root)
-            .caption(format!("{case} — time vs error of every setting"), ("sans-serif", 20))
+            .caption(
+                format!("{case} — time vs error of every setting"),
+                ("sans-serif", 20),
+            )
             .margin(10)
             .x_label_area_size(45)
             .y_label_area_size(80)
@@ -60,7 +76,11 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
             .map_err(err)?;
         for level in Fidelity::ALL {
             let c = level_colour(level);
-            let pts: Vec<(f64, f64)> = rows.iter().filter(|r| r.fidelity == level).map(|r| (r.seconds, r.max_abs_dev.max(FLOOR))).collect();
+            let pts: Vec<(f64, f64)> = rows
+                .iter()
+                .filter(|r| r.fidelity == level)
+                .map(|r| (r.seconds, r.max_abs_dev.max(FLOOR)))
+                .collect();
             chart
                 .draw_series(pts.iter().map(|p| Circle::new(*p, 5, c.filled())))
                 .map_err(err)?
@@ -68,7 +88,12 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
                 .legend(move |(x, y)| Circle::new((x + 10, y), 5, c.filled()));
         }
         let flags = pareto(rows);
-        let mut front: Vec<(f64, f64)> = rows.iter().zip(&flags).filter(|(_, f)| **f).map(|(r, _)| (r.seconds, r.max_abs_dev.max(FLOOR))).collect();
+        let mut front: Vec<(f64, f64)> = rows
+            .iter()
+            .zip(&flags)
+            .filter(|(_, f)| **f)
+            .map(|(r, _)| (r.seconds, r.max_abs_dev.max(FLOOR)))
+            .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         chart
             .draw_series(LineSeries::new(front, BLACK.stroke_width(1)))
@@ -77,7 +102,12 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(1)));
         if let Some(t) = rows.first().map(|r| r.tolerance).filter(|t| *t > 0.0) {
             chart
-                .draw_series(DashedLineSeries::new(vec![(x0, t), (x1, t)], 8, 5, RED.stroke_width(1)))
+                .draw_series(DashedLineSeries::new(
+                    vec![(x0, t), (x1, t)],
+                    8,
+                    5,
+                    RED.stroke_width(1),
+                ))
                 .map_err(err)?
                 .label("tolerance")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], RED.stroke_width(1)));
@@ -109,7 +139,13 @@ pub fn forward_png(rows: &[StudyRow]) -> Result<Vec<u8>, String> {
     let mut pixel_counts: Vec<usize> = rows.iter().map(|r| r.pixels).collect();
     pixel_counts.sort_unstable();
     pixel_counts.dedup();
-    let palette = [RGBColor(200, 40, 40), RGBColor(230, 150, 20), RGBColor(30, 120, 200), RGBColor(40, 160, 80), RGBColor(120, 60, 160)];
+    let palette = [
+        RGBColor(200, 40, 40),
+        RGBColor(230, 150, 20),
+        RGBColor(30, 120, 200),
+        RGBColor(40, 160, 80),
+        RGBColor(120, 60, 160),
+    ];
     png((1000, 360 * scenes.len().max(1) as u32), |root| {
         let panels = root.split_evenly((scenes.len().max(1), 1));
         for (panel, scene) in panels.iter().zip(&scenes) {
@@ -117,7 +153,10 @@ pub fn forward_png(rows: &[StudyRow]) -> Result<Vec<u8>, String> {
             let (x0, x1) = log_range(sel.iter().map(|r| r.mean_rays_per_pixel));
             let (y0, y1) = log_range(sel.iter().map(|r| r.rel_rms_error));
             let mut chart = ChartBuilder::on(panel)
-                .caption(format!("{scene}: error vs rays per pixel (marker size: pixels per side)"), ("sans-serif", 17))
+                .caption(
+                    format!("{scene}: error vs rays per pixel (marker size: pixels per side)"),
+                    ("sans-serif", 17),
+                )
                 .margin(8)
                 .x_label_area_size(40)
                 .y_label_area_size(70)
@@ -135,12 +174,24 @@ pub fn forward_png(rows: &[StudyRow]) -> Result<Vec<u8>, String> {
             for (k, est) in estimators.iter().enumerate() {
                 let c = palette[k % palette.len()];
                 for (pi, p) in pixel_counts.iter().enumerate() {
-                    let mut pts: Vec<(f64, f64)> = sel.iter().filter(|r| &r.estimator == est && r.pixels == *p).map(|r| (r.mean_rays_per_pixel, r.rel_rms_error)).collect();
+                    let mut pts: Vec<(f64, f64)> = sel
+                        .iter()
+                        .filter(|r| &r.estimator == est && r.pixels == *p)
+                        .map(|r| (r.mean_rays_per_pixel, r.rel_rms_error))
+                        .collect();
                     pts.sort_by(|a, b| a.0.total_cmp(&b.0));
-                    chart.draw_series(LineSeries::new(pts.clone(), c.stroke_width(1))).map_err(err)?;
-                    let s = chart.draw_series(pts.iter().map(|q| Circle::new(*q, 3 + 2 * pi as u32, c.filled()))).map_err(err)?;
+                    chart
+                        .draw_series(LineSeries::new(pts.clone(), c.stroke_width(1)))
+                        .map_err(err)?;
+                    let s = chart
+                        .draw_series(
+                            pts.iter()
+                                .map(|q| Circle::new(*q, 3 + 2 * pi as u32, c.filled())),
+                        )
+                        .map_err(err)?;
                     if pi == 0 {
-                        s.label(est.as_str()).legend(move |(x, y)| Circle::new((x + 10, y), 4, c.filled()));
+                        s.label(est.as_str())
+                            .legend(move |(x, y)| Circle::new((x + 10, y), 4, c.filled()));
                     }
                 }
             }

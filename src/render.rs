@@ -1,0 +1,744 @@
+//! Pictures of a case: every pixel of a screen traced exactly (the same paths, rays and
+//! accumulation core as `fringe check`), at one or more rungs of the fidelity ladder, in
+//! monochrome (the case's own light) or in colour (white light on a wavelength grid, streamed
+//! into CIE XYZ).
+//!
+//! # What a pixel is
+//!
+//! A pixel is one screen point (the pixel centre of a [`Probe::Grid`], or a point of a
+//! [`Probe::Line`], drawn as a strip): no area sampling, as in the paper's renders.
+//!
+//! # Wavelengths and streaming
+//!
+//! Per pixel, every wavelength sample λ_i is evaluated and immediately folded into that pixel's
+//! sum `Σ_i W_i I_i` (W_i: the CIE weights (C1) of [`SpectralIntegrator`] for colour, the case's
+//! spectral weights for its own light); no per-wavelength image is ever stored.
+//!
+//! When no medium is dispersive the geometry of every path is independent of λ (Snell's law and
+//! the Fresnel coefficients see the same indices), so the exact paths are solved **once per
+//! pixel** and each λ only changes the path phase: a contribution with optical path difference
+//! Δs (m, from the pixel's first arrival) and λ-independent extra phase e (cycles: the π jumps of
+//! `scalar_jump`) gets phase Δs/λ + e. With a dispersive medium the paths are re-solved per λ.
+//!
+//! Rows run in parallel (rayon); the result does not depend on the thread count.
+
+use crate::accumulate::Accumulator;
+use crate::case::build::{self, Built, GridGeometry, Overrides};
+use crate::case::load::Case;
+use crate::case::spec::{Observer, Probe, ReferenceModel};
+use crate::colour::SpectralIntegrator;
+use crate::fidelity::Fidelity;
+use crate::material::Dispersion;
+use crate::path::{EnumerationLimits, SolveOptions, Target};
+use crate::ray::Field3;
+use crate::scene::{Scene, SceneOptics};
+use crate::trace::{self, Arrival, Plan, TraceSettings};
+use glam::DVec3;
+use num_complex::Complex64;
+use rayon::prelude::*;
+use std::time::Instant;
+
+/// Largest picture side and pixel count `render` accepts.
+pub const MAX_SIDE: usize = 8192;
+pub const MAX_PIXELS: usize = 16 * 1024 * 1024;
+
+/// How the arrivals at a pixel are turned into an intensity.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Shading {
+    /// A rung of the fidelity ladder ([`trace::contribution_from`]).
+    Level(Fidelity),
+    /// The paper's Fig. 6 (right) = Fig. 7 (left) model as its text implies: an unpolarized
+    /// source sends **one scalar ray** along each path, carrying the total power of both
+    /// polarizations after the exact Fresnel powers (I = Σ_channels |E|²), with phase from the
+    /// optical path plus π per reflection from the denser side (the ⊥ rule for every ray).
+    /// Its fringes are I1 + I2 + 2√(I1 I2) cos δ with I1 = I1s + I1p, I2 = I2s + I2p, while
+    /// the s/p decomposition (`paper_rules`) gives 2(√(I1s I2s) + √(I1p I2p)) cos δ: by
+    /// Cauchy–Schwarz the scalar ray overstates the fringe contrast except where
+    /// I1s/I2s = I1p/I2p — at normal incidence and at Brewster's angle, where both p beams
+    /// vanish. fringe's `scalar_jump` instead keeps the two polarization channels apart.
+    UnpolarizedScalarJump,
+}
+
+impl Shading {
+    /// Short name for files and tables.
+    pub fn name(self) -> String {
+        match self {
+            Shading::Level(l) => l.name().to_string(),
+            Shading::UnpolarizedScalarJump => "unpolarized_scalar_jump".into(),
+        }
+    }
+}
+
+/// Which light the picture is made with.
+#[derive(Clone, Debug)]
+pub enum Spectrum {
+    /// The case's own light (monochrome or its sampled Gaussian): an intensity image, the
+    /// spectral weights summing to 1.
+    CaseLight,
+    /// White light: the integrator's wavelength grid under its illuminant, an XYZ image with
+    /// Y = 1 for a surface reflecting everything (C1).
+    White(SpectralIntegrator),
+}
+
+/// The screen points of a picture.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Screen {
+    pub geometry: GridGeometry,
+    /// One-sided screen (see [`Observer::Point`]).
+    pub looks_toward: Option<DVec3>,
+    /// True for a line probe (one row, drawn as a strip).
+    pub strip: bool,
+}
+
+impl Screen {
+    /// The screen of a case's probe: a [`Probe::Grid`] (at `size` = (columns, rows) pixels
+    /// over the same rectangle when given) or a [`Probe::Line`] (one row of `size.0` points,
+    /// default the probe's count, from end to end).
+    pub fn from_probe(probe: &Probe, size: Option<(usize, usize)>) -> Result<Screen, String> {
+        let check = |w: usize, h: usize| {
+            if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE || w * h > MAX_PIXELS {
+                Err(format!(
+                    "picture size {w}x{h}: each side 1..={MAX_SIDE}, at most {MAX_PIXELS} pixels"
+                ))
+            } else {
+                Ok(())
+            }
+        };
+        let v = |a: &[f64; 3]| DVec3::from_array(*a);
+        match probe {
+            Probe::Grid {
+                center_m,
+                u_axis,
+                v_axis,
+                size_m,
+                pixels,
+                looks_toward,
+            } => {
+                let (w, h) = size.unwrap_or((pixels[0], pixels[1]));
+                check(w, h)?;
+                Ok(Screen {
+                    geometry: GridGeometry::new(v(center_m), v(u_axis), v(v_axis), *size_m, [w, h]),
+                    looks_toward: looks_toward.map(|l| v(&l)),
+                    strip: false,
+                })
+            }
+            Probe::Line {
+                from_m,
+                to_m,
+                count,
+                looks_toward,
+                ..
+            } => {
+                let w = size.map_or(*count, |s| s.0);
+                check(w, 1)?;
+                let (a, b) = (v(from_m), v(to_m));
+                Ok(Screen {
+                    geometry: GridGeometry {
+                        origin: a,
+                        step_col: if w > 1 {
+                            (b - a) / (w - 1) as f64
+                        } else {
+                            DVec3::ZERO
+                        },
+                        step_row: DVec3::ZERO,
+                        columns: w,
+                        rows: 1,
+                    },
+                    looks_toward: looks_toward.map(|l| v(&l)),
+                    strip: true,
+                })
+            }
+            Probe::Sweep { .. } | Probe::Single { .. } => Err(
+                "a picture needs a `grid` probe (or a `line` probe, drawn as a strip); this case \
+                 sweeps a parameter or observes a single point"
+                    .into(),
+            ),
+        }
+    }
+
+    /// The observer of the screen point `position`.
+    pub fn observer(&self, position: DVec3) -> Observer {
+        Observer::Point {
+            position_m: position.to_array(),
+            looks_toward: self.looks_toward.map(|l| l.to_array()),
+        }
+    }
+}
+
+/// One rendered picture (row-major, row 0 at the top).
+#[derive(Clone, Debug, PartialEq)]
+pub struct Image {
+    pub shading: Shading,
+    pub width: usize,
+    pub height: usize,
+    pub values: ImageValues,
+}
+
+/// The pixel values of an [`Image`].
+#[derive(Clone, Debug, PartialEq)]
+pub enum ImageValues {
+    /// Relative intensity (|E|² with a unit source), spectrally weighted by the case's light.
+    Intensity(Vec<f64>),
+    /// CIE XYZ under the white light's illuminant, Y = 1 for a perfect reflector.
+    Xyz(Vec<[f64; 3]>),
+}
+
+/// What a render produced.
+#[derive(Clone, Debug)]
+pub struct Render {
+    /// One image per requested shading, in the requested order.
+    pub images: Vec<Image>,
+    /// The wavelength whose hue shows an intensity image: the case's (centre) wavelength.
+    pub display_lambda_m: f64,
+    /// Number of wavelength samples per pixel.
+    pub samples: usize,
+    /// Whether some medium is dispersive (paths re-solved per wavelength).
+    pub dispersive: bool,
+    /// Exact paths solved (successful ones), all pixels and wavelengths.
+    pub paths: usize,
+    /// Wall time of the render (s).
+    pub seconds: f64,
+}
+
+/// A render request.
+#[derive(Clone, Debug)]
+pub struct Request {
+    pub screen: Screen,
+    pub shadings: Vec<Shading>,
+    pub spectrum: Spectrum,
+    /// Show a progress bar on stderr (only when stderr is a terminal).
+    pub progress: bool,
+}
+
+/// Whether any medium of the built scene has a wavelength-dependent index.
+pub fn is_dispersive(built: &Built) -> bool {
+    built
+        .media
+        .values()
+        .any(|m| !matches!(m.dispersion, Dispersion::Constant { .. }))
+}
+
+/// The tracer settings `fringe check` uses for this case (mirrors `case::run`): the case's
+/// internal-reflection budget (or the Airy tail rule at `lambda_m`), spreading as configured.
+pub fn trace_settings(case: &Case, built: &Built, lambda_m: f64) -> Result<TraceSettings, String> {
+    let spec = &case.spec;
+    let internal = match spec.trace.airy_tail_epsilon {
+        None => spec.trace.max_internal_reflections,
+        Some(eps) => {
+            let film = spec
+                .references
+                .iter()
+                .find_map(|r| match &r.model {
+                    ReferenceModel::Airy { film, .. } => Some(film.clone()),
+                    _ => None,
+                })
+                .ok_or("airy_tail_epsilon needs an `airy` reference naming the film")?;
+            let (f, cos1) = crate::case::reference::airy_film(built, &film, lambda_m)?;
+            let orders = [
+                crate::analytic::plate::Pol::S,
+                crate::analytic::plate::Pol::P,
+            ]
+            .into_iter()
+            .map(|p| f.orders_for_bound(cos1, lambda_m, p, eps))
+            .max()
+            .unwrap_or(1);
+            (2 * orders + 1).min(crate::case::load::limits::MAX_INTERNAL_REFLECTIONS)
+        }
+    };
+    Ok(TraceSettings {
+        limits: EnumerationLimits {
+            max_internal_reflections: internal,
+            max_events: 2 * internal + 2 * built.scene.surfaces.len() + 4,
+        },
+        solve: SolveOptions {
+            spreading: spec.trace.spreading,
+            ..SolveOptions::default()
+        },
+    })
+}
+
+/// The arrivals a one-sided screen point records, with `plan`'s sequences.
+pub fn arrivals_at(
+    scene: &Scene,
+    optics: &SceneOptics,
+    plan: &Plan,
+    point: DVec3,
+    observer: &Observer,
+    settings: &TraceSettings,
+) -> Vec<Arrival> {
+    let mut arr = trace::arrivals(scene, optics, plan, &Target::Point(point), settings).0;
+    arr.retain(|a| build::records(observer, a.vector.dir));
+    arr
+}
+
+/// A contribution with its phase split into a λ-scaled path part and a λ-independent part.
+#[derive(Clone, Copy, Debug)]
+struct Prepared {
+    coherence_id: u64,
+    /// Optical path minus the pixel's reference optical path (m).
+    delta_s_m: f64,
+    /// Phase that does not scale with 1/λ (cycles): π jumps.
+    extra_cycles: f64,
+    field: Field3,
+}
+
+/// The contributions of `arr` under `shading`, phases split for re-evaluation at any λ.
+fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<Prepared>) {
+    out.clear();
+    let Some(first) = arr.first() else { return };
+    let reference_m = first.vector.optical_path_m;
+    match shading {
+        Shading::Level(level) => {
+            for a in arr {
+                let c = trace::contribution_from(a, level, reference_m);
+                let ray = if level == Fidelity::PaperRules {
+                    &a.paper
+                } else {
+                    &a.vector
+                };
+                let delta_s_m = ray.optical_path_m - reference_m;
+                out.push(Prepared {
+                    coherence_id: c.coherence_id,
+                    delta_s_m,
+                    extra_cycles: c.phase_cycles - delta_s_m / ray.wavelength_m,
+                    field: c.field,
+                });
+            }
+        }
+        Shading::UnpolarizedScalarJump => {
+            // The channels of one source along one path are consecutive arrivals.
+            let mut k = 0;
+            while k < arr.len() {
+                let a = &arr[k];
+                let mut power = 0.0;
+                while k < arr.len()
+                    && arr[k].source == a.source
+                    && arr[k].path.sequence == a.path.sequence
+                {
+                    power += arr[k].vector.intensity();
+                    k += 1;
+                }
+                out.push(Prepared {
+                    coherence_id: a.vector.coherence_id,
+                    delta_s_m: a.vector.optical_path_m - reference_m,
+                    extra_cycles: 0.5 * a.path.denser_reflections as f64,
+                    field: [
+                        Complex64::from(power.sqrt()),
+                        Complex64::default(),
+                        Complex64::default(),
+                    ],
+                });
+            }
+        }
+    }
+}
+
+/// Intensity of prepared contributions at vacuum wavelength `lambda_m`.
+fn evaluate(prepared: &[Prepared], lambda_m: f64, acc: &mut Accumulator) -> f64 {
+    acc.clear();
+    for p in prepared {
+        acc.add_parts(
+            p.coherence_id,
+            p.delta_s_m / lambda_m + p.extra_cycles,
+            &p.field,
+        );
+    }
+    acc.intensity()
+}
+
+/// Everything a pixel needs, shared by all threads.
+struct Context<'a> {
+    built: &'a Built,
+    settings: &'a TraceSettings,
+    /// (λ, weights [X, Y, Z] or [0, w, 0]) per sample.
+    samples: Vec<(f64, [f64; 3])>,
+    /// Scene optics and plan per sample (dispersive), or one entry (the middle sample).
+    optics: Vec<SceneOptics>,
+    plans: Vec<Plan>,
+    dispersive: bool,
+    shadings: &'a [Shading],
+}
+
+/// Per-thread scratch space.
+#[derive(Default)]
+struct Scratch {
+    acc: Accumulator,
+    prepared: Vec<Vec<Prepared>>,
+}
+
+impl Context<'_> {
+    /// Adds Σ_i W_i I_i of every shading at `point` into `out` (one [f64; 3] per shading);
+    /// returns the number of solved paths.
+    fn pixel(
+        &self,
+        point: DVec3,
+        observer: &Observer,
+        s: &mut Scratch,
+        out: &mut [[f64; 3]],
+    ) -> usize {
+        let scene = &self.built.scene;
+        s.prepared.resize_with(self.shadings.len(), Vec::new);
+        if !self.dispersive {
+            let optics = &self.optics[0];
+            let arr = arrivals_at(
+                scene,
+                optics,
+                &self.plans[0],
+                point,
+                observer,
+                self.settings,
+            );
+            for (k, sh) in self.shadings.iter().enumerate() {
+                prepare(&arr, *sh, &mut s.prepared[k]);
+            }
+            for &(lambda, w) in &self.samples {
+                for (prepared, sum) in s.prepared.iter().zip(out.iter_mut()) {
+                    let i = evaluate(prepared, lambda, &mut s.acc);
+                    for c in 0..3 {
+                        sum[c] += w[c] * i;
+                    }
+                }
+            }
+            arr.len()
+        } else {
+            let mut paths = 0;
+            for (j, &(lambda, w)) in self.samples.iter().enumerate() {
+                let optics = &self.optics[j];
+                let arr = arrivals_at(
+                    scene,
+                    optics,
+                    &self.plans[j],
+                    point,
+                    observer,
+                    self.settings,
+                );
+                paths += arr.len();
+                for (k, sh) in self.shadings.iter().enumerate() {
+                    prepare(&arr, *sh, &mut s.prepared[k]);
+                    let i = evaluate(&s.prepared[k], lambda, &mut s.acc);
+                    for c in 0..3 {
+                        out[k][c] += w[c] * i;
+                    }
+                }
+            }
+            paths
+        }
+    }
+}
+
+/// The probe targets a render plans its sequences with: a 5 × 5 lattice of the screen's pixels
+/// (corners and edges included).
+fn plan_targets(g: &GridGeometry) -> Vec<DVec3> {
+    let pick = |n: usize, k: usize| if n <= 1 { 0 } else { k * (n - 1) / 4 };
+    let mut t = Vec::new();
+    for a in 0..5 {
+        for b in 0..5 {
+            t.push(g.position(pick(g.columns, a), pick(g.rows, b)));
+        }
+    }
+    t.dedup();
+    t
+}
+
+/// Render `case` as requested.
+pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
+    let t0 = Instant::now();
+    if req.shadings.is_empty() {
+        return Err("render: no shading (fidelity level) requested".into());
+    }
+    let built = build::build_scene(&case.spec.scene, &Overrides::default())?;
+    let case_light = build::spectrum(&case.spec.light, &Overrides::default());
+    let display_lambda_m = case_light[case_light.len() / 2].0;
+    let samples: Vec<(f64, [f64; 3])> = match &req.spectrum {
+        Spectrum::CaseLight => case_light
+            .iter()
+            .map(|&(l, w)| (l, [0.0, w, 0.0]))
+            .collect(),
+        Spectrum::White(integ) => integ
+            .lambdas_m()
+            .iter()
+            .enumerate()
+            .map(|(i, &l)| (l, integ.sample_weights(i)))
+            .collect(),
+    };
+    let reference_sample = samples.len() / 2;
+    let dispersive = is_dispersive(&built);
+    let settings = trace_settings(case, &built, samples[reference_sample].0)?;
+    let targets = plan_targets(&req.screen.geometry);
+    let lambdas: Vec<f64> = if dispersive {
+        samples.iter().map(|s| s.0).collect()
+    } else {
+        vec![samples[reference_sample].0]
+    };
+    let mut optics = Vec::new();
+    let mut plans = Vec::new();
+    for &l in &lambdas {
+        let o = built
+            .scene
+            .optics(l)
+            .map_err(|e| format!("at {:.1} nm: {e}", l * 1e9))?;
+        plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
+        optics.push(o);
+    }
+    let ctx = Context {
+        built: &built,
+        settings: &settings,
+        samples,
+        optics,
+        plans,
+        dispersive,
+        shadings: &req.shadings,
+    };
+    let g = req.screen.geometry;
+    let bar = progress_bar(g.rows as u64, req.progress);
+    let ns = req.shadings.len();
+    let rows: Vec<(Vec<[f64; 3]>, usize)> = (0..g.rows)
+        .into_par_iter()
+        .map_init(Scratch::default, |s, row| {
+            let mut out = vec![[0.0; 3]; g.columns * ns];
+            let mut paths = 0;
+            for col in 0..g.columns {
+                let p = g.position(col, row);
+                paths += ctx.pixel(
+                    p,
+                    &req.screen.observer(p),
+                    s,
+                    &mut out[col * ns..(col + 1) * ns],
+                );
+            }
+            bar.inc(1);
+            (out, paths)
+        })
+        .collect();
+    bar.finish_and_clear();
+    let paths = rows.iter().map(|r| r.1).sum();
+    let images = req
+        .shadings
+        .iter()
+        .enumerate()
+        .map(|(k, sh)| {
+            let pixels = rows
+                .iter()
+                .flat_map(|(r, _)| (0..g.columns).map(move |col| r[col * ns + k]));
+            Image {
+                shading: *sh,
+                width: g.columns,
+                height: g.rows,
+                values: match req.spectrum {
+                    Spectrum::CaseLight => ImageValues::Intensity(pixels.map(|p| p[1]).collect()),
+                    Spectrum::White(_) => ImageValues::Xyz(pixels.collect()),
+                },
+            }
+        })
+        .collect();
+    Ok(Render {
+        images,
+        display_lambda_m,
+        samples: ctx.samples.len(),
+        dispersive,
+        paths,
+        seconds: t0.elapsed().as_secs_f64(),
+    })
+}
+
+/// A progress bar over `len` rows on stderr, hidden unless `show` and stderr is a terminal.
+fn progress_bar(len: u64, show: bool) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !show || !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len);
+    if let Ok(style) = indicatif::ProgressStyle::with_template(
+        "{spinner} rendering [{bar:40}] {pos}/{len} rows, {elapsed} elapsed, ~{eta} left",
+    ) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
+// ---------------------------------------------------------------------------------------------
+// The `fringe render` command
+// ---------------------------------------------------------------------------------------------
+
+/// Parses `WxH` (e.g. `900x900`).
+pub fn parse_size(s: &str) -> Result<(usize, usize), String> {
+    let bad = || format!("--size {s:?}: expected WxH with positive integers, e.g. 300x300");
+    let (w, h) = s.split_once(['x', 'X']).ok_or_else(bad)?;
+    let (w, h): (usize, usize) = (
+        w.trim().parse().map_err(|_| bad())?,
+        h.trim().parse().map_err(|_| bad())?,
+    );
+    if w == 0 || h == 0 || w > MAX_SIDE || h > MAX_SIDE || w * h > MAX_PIXELS {
+        return Err(format!(
+            "--size {s}: each side 1..={MAX_SIDE}, at most {MAX_PIXELS} pixels"
+        ));
+    }
+    Ok((w, h))
+}
+
+/// Parses a fidelity level name, or `unpolarized_scalar_jump` ([`Shading::UnpolarizedScalarJump`]).
+pub fn parse_shading(s: &str) -> Result<Shading, String> {
+    if s == "unpolarized_scalar_jump" {
+        return Ok(Shading::UnpolarizedScalarJump);
+    }
+    Fidelity::parse(s).map(Shading::Level).ok_or_else(|| {
+        format!(
+            "--fidelity {s:?}: expected one of incoherent, scalar, scalar_jump, paper_rules, \
+             vector, unpolarized_scalar_jump"
+        )
+    })
+}
+
+/// A case argument: a path to a `.json` file, or a name in `cases_dir` or `figures/`.
+pub fn resolve_case(name: &str, cases_dir: &std::path::Path) -> Result<std::path::PathBuf, String> {
+    let p = std::path::Path::new(name);
+    if name.ends_with(".json") || name.contains('/') {
+        return if p.is_file() {
+            Ok(p.to_path_buf())
+        } else {
+            Err(format!("{name}: no such case file"))
+        };
+    }
+    let candidates = [
+        cases_dir.join(format!("{name}.json")),
+        std::path::Path::new("figures").join(format!("{name}.json")),
+    ];
+    candidates
+        .iter()
+        .find(|c| c.is_file())
+        .cloned()
+        .ok_or_else(|| {
+            format!(
+                "{name}: no case of that name in {} or figures/",
+                cases_dir.display()
+            )
+        })
+}
+
+/// What `fringe render` was asked.
+#[derive(Clone, Debug)]
+pub struct Command {
+    pub case: std::path::PathBuf,
+    pub shadings: Vec<Shading>,
+    /// White light (grid, illuminant); `None`: the case's own light.
+    pub white: Option<(crate::colour::WavelengthGrid, crate::colour::Illuminant)>,
+    pub size: Option<(usize, usize)>,
+    /// Output PNG; with several shadings `_<name>` is inserted before the extension.
+    pub output: Option<std::path::PathBuf>,
+    pub progress: bool,
+}
+
+/// Runs `fringe render`: renders, writes the PNG(s) atomically, and returns the lines to print
+/// (files, size, light, normalisation, timing).
+pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
+    use crate::report::image as img;
+    let case = crate::case::load::load(&cmd.case).map_err(|e| e.to_string())?;
+    let screen = Screen::from_probe(&case.spec.probe, cmd.size)?;
+    let spectrum = match &cmd.white {
+        None => Spectrum::CaseLight,
+        Some((grid, ill)) => Spectrum::White(SpectralIntegrator::new(grid, *ill)?),
+    };
+    let r = render(
+        &case,
+        &Request {
+            screen,
+            shadings: cmd.shadings.clone(),
+            spectrum: spectrum.clone(),
+            progress: cmd.progress,
+        },
+    )?;
+    let g = screen.geometry;
+    let height = if screen.strip {
+        cmd.size.map_or(60, |s| s.1)
+    } else {
+        g.rows
+    };
+    let mut lines = vec![format!(
+        "{}: {}x{} points, {} wavelength sample(s){}, {} path(s) solved in {:.2} s",
+        case.spec.name,
+        g.columns,
+        g.rows,
+        r.samples,
+        if r.dispersive {
+            " (dispersive: paths re-solved per wavelength)"
+        } else {
+            " (non-dispersive: paths solved once per pixel)"
+        },
+        r.paths,
+        r.seconds
+    )];
+    let base = cmd.output.clone().unwrap_or_else(|| {
+        std::path::Path::new("reports")
+            .join("render")
+            .join(format!("{}.png", case.spec.name))
+    });
+    let file_for = |sh: Shading| {
+        if cmd.shadings.len() == 1 {
+            base.clone()
+        } else {
+            let stem = base
+                .file_stem()
+                .and_then(|s| s.to_str())
+                .unwrap_or("render");
+            base.with_file_name(format!("{stem}_{}.png", sh.name()))
+        }
+    };
+    match &spectrum {
+        Spectrum::CaseLight => {
+            let scale = r
+                .images
+                .iter()
+                .filter_map(|im| match &im.values {
+                    ImageValues::Intensity(i) => Some(img::peak(i)),
+                    ImageValues::Xyz(_) => None,
+                })
+                .fold(0.0, f64::max);
+            lines.push(format!(
+                "monochrome, drawn in the hue of {:.1} nm; normalised so the brightest pixel over \
+                 the picture(s) (I = {scale:.6e}) is full scale",
+                r.display_lambda_m * 1e9
+            ));
+            for im in &r.images {
+                if let ImageValues::Intensity(i) = &im.values {
+                    let mut pic =
+                        img::monochrome(im.width, im.height, i, r.display_lambda_m, scale);
+                    if screen.strip {
+                        pic = pic.extrude(height);
+                    }
+                    let f = file_for(im.shading);
+                    crate::report::write_atomic(&f, &pic.png()?)
+                        .map_err(|e| format!("{}: cannot write: {e}", f.display()))?;
+                    lines.push(format!("{}: {}", im.shading.name(), f.display()));
+                }
+            }
+        }
+        Spectrum::White(integ) => {
+            let ill = integ.illuminant();
+            let adaptation = ill.default_adaptation();
+            let exposure =
+                img::exposure_for_peak_y(r.images.iter().filter_map(|im| match &im.values {
+                    ImageValues::Xyz(x) => Some(x.as_slice()),
+                    ImageValues::Intensity(_) => None,
+                }));
+            lines.push(format!(
+                "white light, illuminant {} (adaptation {}), CIE 1931 2°; XYZ × {exposure:.6} so the \
+                 brightest Y over the picture(s) is 1, then sRGB (IEC matrix, clip, transfer curve)",
+                ill.name(),
+                adaptation.name()
+            ));
+            for im in &r.images {
+                if let ImageValues::Xyz(x) = &im.values {
+                    let mut pic = img::colour(im.width, im.height, x, exposure, ill, adaptation);
+                    if screen.strip {
+                        pic = pic.extrude(height);
+                    }
+                    let f = file_for(im.shading);
+                    crate::report::write_atomic(&f, &pic.png()?)
+                        .map_err(|e| format!("{}: cannot write: {e}", f.display()))?;
+                    lines.push(format!("{}: {}", im.shading.name(), f.display()));
+                }
+            }
+        }
+    }
+    Ok(lines)
+}

@@ -1,0 +1,421 @@
+//! The `fringe check` command line: exit codes (0 pass, 1 a case failed, 2 bad input), what it
+//! prints, what it writes, and that bad input writes nothing. Every run uses a temporary
+//! `--out` and, where a golden file could be touched, temporary copies of `cases/` and
+//! `golden/`, so the repository's golden files are never written.
+//!
+//! `every_bad_case_is_rejected_clearly` runs the bad-input corpus `tests/bad_cases/` (each file a
+//! minimal modification of a library case; `expected.json` maps it to the JSON path and a
+//! message fragment saying what is allowed).
+
+use assert_cmd::Command;
+use predicates::prelude::*;
+use serde_json::Value;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+fn fringe() -> Command {
+    let mut c = Command::new(env!("CARGO_BIN_EXE_fringe"));
+    c.env_remove("RUST_BACKTRACE")
+        .env_remove("RUST_LIB_BACKTRACE");
+    c
+}
+
+/// A temporary library: `cases/` and `golden/` copies of the named library cases.
+struct Lib {
+    dir: tempfile::TempDir,
+}
+
+impl Lib {
+    fn new(names: &[&str]) -> Lib {
+        let dir = tempfile::tempdir().unwrap();
+        std::fs::create_dir_all(dir.path().join("cases")).unwrap();
+        std::fs::create_dir_all(dir.path().join("golden")).unwrap();
+        let lib = Lib { dir };
+        for n in names {
+            std::fs::copy(
+                root().join(format!("cases/{n}.json")),
+                lib.cases().join(format!("{n}.json")),
+            )
+            .unwrap();
+            std::fs::copy(
+                root().join(format!("golden/{n}.csv")),
+                lib.golden().join(format!("{n}.csv")),
+            )
+            .unwrap();
+        }
+        lib
+    }
+    fn path(&self) -> &Path {
+        self.dir.path()
+    }
+    fn cases(&self) -> PathBuf {
+        self.path().join("cases")
+    }
+    fn golden(&self) -> PathBuf {
+        self.path().join("golden")
+    }
+    fn out(&self) -> PathBuf {
+        self.path().join("out")
+    }
+    /// `fringe check ARGS --cases-dir cases --golden-dir golden --out out`, run in the library.
+    fn check(&self, args: &[&str]) -> Command {
+        let mut c = fringe();
+        c.current_dir(self.path())
+            .arg("check")
+            .args(args)
+            .arg("--cases-dir")
+            .arg(self.cases())
+            .arg("--golden-dir")
+            .arg(self.golden())
+            .arg("--out")
+            .arg(self.out());
+        c
+    }
+    fn edit_case(&self, name: &str, f: impl FnOnce(&mut Value)) {
+        let p = self.cases().join(format!("{name}.json"));
+        let mut v: Value = serde_json::from_str(&std::fs::read_to_string(&p).unwrap()).unwrap();
+        f(&mut v);
+        std::fs::write(&p, serde_json::to_string_pretty(&v).unwrap()).unwrap();
+    }
+}
+
+/// Every file under `dir` with its bytes (empty if `dir` is absent).
+fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
+    let mut out = BTreeMap::new();
+    if let Ok(rd) = std::fs::read_dir(dir) {
+        for e in rd {
+            let p = e.unwrap().path();
+            if p.is_dir() {
+                out.extend(snapshot(&p));
+            } else {
+                out.insert(p.clone(), std::fs::read(&p).unwrap());
+            }
+        }
+    }
+    out
+}
+
+fn absent_or_empty(dir: &Path) -> bool {
+    snapshot(dir).is_empty()
+}
+
+fn no_panic() -> impl Predicate<str> {
+    predicate::str::contains("panicked")
+        .or(predicate::str::contains("stack backtrace"))
+        .or(predicate::str::contains("RUST_BACKTRACE"))
+        .not()
+}
+
+#[test]
+fn a_passing_case_exits_0_and_writes_its_reports() {
+    let lib = Lib::new(&["young_paper"]);
+    let golden_before = snapshot(&lib.golden());
+    lib.check(&["young_paper"])
+        .assert()
+        .code(0)
+        .stdout(predicate::str::contains("young_paper").and(predicate::str::contains("pass")))
+        .stdout(predicate::str::contains("FAIL").not())
+        .stderr(predicate::str::contains("all 1 case(s) pass"));
+    assert!(lib.out().join("summary.json").is_file());
+    assert!(lib.out().join("young_paper/profile.csv").is_file());
+    assert_eq!(
+        snapshot(&lib.golden()),
+        golden_before,
+        "a check without --bless wrote golden/"
+    );
+}
+
+#[test]
+fn a_case_file_given_by_path_runs() {
+    let lib = Lib::new(&["young_paper"]);
+    let moved = lib.path().join("elsewhere.json");
+    std::fs::rename(lib.cases().join("young_paper.json"), &moved).unwrap();
+    lib.check(&[moved.to_str().unwrap()]).assert().code(0);
+}
+
+#[test]
+fn a_tightened_tolerance_exits_1_and_names_the_case() {
+    let lib = Lib::new(&["young_paper"]);
+    lib.edit_case("young_paper", |v| {
+        v["references"][0]["tolerances"]["vector"] = serde_json::json!(1e-30)
+    });
+    lib.check(&["young_paper"])
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains("FAIL"))
+        .stderr(predicate::str::contains("FAILED: young_paper"))
+        .stderr(no_panic());
+}
+
+#[test]
+fn a_changed_golden_value_exits_1_and_names_the_case() {
+    let lib = Lib::new(&["young_paper"]);
+    let p = lib.golden().join("young_paper.csv");
+    let text = std::fs::read_to_string(&p).unwrap();
+    // Change the traced value of the first data row (a finite number, so the file still parses).
+    let mut lines: Vec<String> = text.lines().map(str::to_string).collect();
+    let mut f: Vec<String> = lines[1].split(',').map(str::to_string).collect();
+    let v: f64 = f[3].parse().unwrap();
+    f[3] = format!("{:.17e}", v * 1.001 + 1e-3);
+    lines[1] = f.join(",");
+    std::fs::write(&p, lines.join("\n") + "\n").unwrap();
+    lib.check(&["young_paper"])
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains("golden").and(predicate::str::contains("FAIL")))
+        .stderr(predicate::str::contains("FAILED: young_paper"));
+}
+
+#[test]
+fn an_unparseable_golden_file_exits_2_and_writes_nothing() {
+    let lib = Lib::new(&["young_paper"]);
+    let p = lib.golden().join("young_paper.csv");
+    std::fs::write(
+        &p,
+        "reference,fidelity,coordinate,traced\nyoung_exact,vector,zero,NaN\n",
+    )
+    .unwrap();
+    let before = snapshot(&lib.golden());
+    lib.check(&["young_paper"])
+        .assert()
+        .code(2)
+        .stderr(
+            predicate::str::contains("young_paper.csv").and(predicate::str::contains("corrupt")),
+        )
+        .stderr(predicate::str::contains("line 2"))
+        .stderr(no_panic());
+    assert!(absent_or_empty(&lib.out()), "exit 2 wrote into --out");
+    assert_eq!(snapshot(&lib.golden()), before);
+}
+
+#[test]
+fn a_malformed_case_exits_2_with_file_and_json_path_and_writes_nothing() {
+    let lib = Lib::new(&["young_paper", "michelson"]);
+    lib.edit_case("young_paper", |v| {
+        v["probe"]["line"]["count"] = serde_json::json!("401")
+    });
+    let before = snapshot(&lib.golden());
+    // One bad case stops the whole run before anything is traced or written.
+    lib.check(&["michelson", "young_paper"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains(
+            "young_paper.json: $.probe.line.count:",
+        ))
+        .stderr(predicate::str::contains("1 to 100000 probe points"))
+        .stderr(no_panic());
+    assert!(absent_or_empty(&lib.out()));
+    assert_eq!(snapshot(&lib.golden()), before);
+    // The same with --bless: no golden file is written.
+    lib.check(&["michelson", "young_paper", "--bless"])
+        .assert()
+        .code(2);
+    assert!(absent_or_empty(&lib.out()));
+    assert_eq!(snapshot(&lib.golden()), before);
+}
+
+#[test]
+fn json_format_prints_an_array_of_rows() {
+    let lib = Lib::new(&["young_paper"]);
+    let out = lib
+        .check(&["young_paper", "--format", "json"])
+        .assert()
+        .code(0)
+        .get_output()
+        .stdout
+        .clone();
+    let v: Value = serde_json::from_slice(&out).expect("stdout is one JSON document");
+    let rows = v.as_array().expect("a JSON array");
+    assert!(!rows.is_empty());
+    for r in rows {
+        for key in [
+            "case",
+            "fidelity",
+            "metric",
+            "max_abs_dev",
+            "rms_dev",
+            "tolerance",
+            "pass",
+            "seconds",
+        ] {
+            assert!(r.get(key).is_some(), "row without {key}: {r}");
+        }
+        assert_eq!(r["case"], "young_paper");
+    }
+    assert!(
+        rows.iter()
+            .any(|r| r["metric"] == "golden" && r["pass"] == true)
+    );
+    assert!(
+        rows.iter()
+            .any(|r| r["fidelity"] == "vector" && r["pass"] == true)
+    );
+    assert!(
+        rows.iter()
+            .any(|r| r["pass"].is_null() && r["tolerance"].is_null())
+    );
+}
+
+#[test]
+fn bless_writes_golden_files_only_into_the_given_folder() {
+    let repo_golden = snapshot(&root().join("golden"));
+    let lib = Lib::new(&["young_paper"]);
+    std::fs::remove_file(lib.golden().join("young_paper.csv")).unwrap();
+    // Without a golden file the case fails, telling how to create it.
+    lib.check(&["young_paper"])
+        .assert()
+        .code(1)
+        .stdout(predicate::str::contains("--bless"));
+    lib.check(&["young_paper", "--bless"]).assert().code(0);
+    let written: Vec<PathBuf> = snapshot(&lib.golden()).into_keys().collect();
+    assert_eq!(written, vec![lib.golden().join("young_paper.csv")]);
+    let text = std::fs::read_to_string(&written[0]).unwrap();
+    assert!(text.starts_with("reference,fidelity,coordinate,traced\n"));
+    // The blessed file is a baseline the next run passes against.
+    lib.check(&["young_paper"]).assert().code(0);
+    assert!(
+        snapshot(&root().join("golden")) == repo_golden,
+        "the repository's golden/ changed"
+    );
+}
+
+#[test]
+fn unknown_names_and_paths_exit_2_and_write_nothing() {
+    let lib = Lib::new(&["young_paper"]);
+    for name in [
+        "no_such_case",
+        "../young_paper",
+        "../cases/young_paper",
+        "cases/../../young_paper",
+        "young_paper/..",
+        "Young-Paper",
+        "",
+        "missing.json",
+    ] {
+        lib.check(&[name])
+            .assert()
+            .code(2)
+            .stderr(predicate::str::starts_with("error: "))
+            .stderr(no_panic());
+        assert!(absent_or_empty(&lib.out()), "{name:?} wrote into --out");
+    }
+}
+
+#[test]
+fn an_empty_or_missing_library_exits_2() {
+    let lib = Lib::new(&[]);
+    lib.check(&[])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("empty"));
+    std::fs::remove_dir(lib.cases()).unwrap();
+    lib.check(&[])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("cases"));
+    assert!(absent_or_empty(&lib.out()));
+}
+
+#[test]
+fn two_files_with_one_case_name_exit_2() {
+    let lib = Lib::new(&["young_paper"]);
+    std::fs::copy(
+        lib.cases().join("young_paper.json"),
+        lib.cases().join("young_paper_copy.json"),
+    )
+    .unwrap();
+    lib.check(&["young_paper", "young_paper_copy"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("$.name"));
+    assert!(absent_or_empty(&lib.out()));
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    fringe().args(["check", "--format", "xml"]).assert().code(2);
+    fringe().args(["frobnicate"]).assert().code(2);
+    fringe().arg("--help").assert().code(0);
+}
+
+#[test]
+fn every_bad_case_is_rejected_clearly() {
+    let dir = root().join("tests/bad_cases");
+    let expected: BTreeMap<String, Value> =
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap())
+            .expect("tests/bad_cases/expected.json");
+    let files: Vec<String> = std::fs::read_dir(&dir)
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().to_string())
+        .filter(|n| n != "expected.json")
+        .collect();
+    for f in &files {
+        assert!(
+            expected.contains_key(f),
+            "{f} is not listed in expected.json"
+        );
+    }
+    assert!(expected.len() >= 30, "only {} bad cases", expected.len());
+    let tmp = tempfile::tempdir().unwrap();
+    let mut failures = Vec::new();
+    for (k, (file, e)) in expected.iter().enumerate() {
+        let path = dir.join(file);
+        assert!(
+            path.is_file(),
+            "expected.json lists {file}, which does not exist"
+        );
+        let json_path = e["json_path"].as_str().unwrap();
+        let message = e["message"].as_str().unwrap();
+        let out = tmp.path().join(format!("out{k}"));
+        let golden = tmp.path().join(format!("golden{k}"));
+        let o = fringe()
+            .current_dir(tmp.path())
+            .arg("check")
+            .arg(&path)
+            .arg("--out")
+            .arg(&out)
+            .arg("--golden-dir")
+            .arg(&golden)
+            .arg("--bless")
+            .output()
+            .unwrap();
+        let stderr = String::from_utf8_lossy(&o.stderr);
+        let lines: Vec<&str> = stderr.lines().filter(|l| !l.trim().is_empty()).collect();
+        let want = format!("{}: {json_path}: ", path.display());
+        let mut why = Vec::new();
+        if o.status.code() != Some(2) {
+            why.push(format!("exit {:?}, not 2", o.status.code()));
+        }
+        if lines.len() != 1 || !lines[0].starts_with("error: ") {
+            why.push("not exactly one `error: ` line".to_string());
+        }
+        if !stderr.contains(&want) {
+            why.push(format!("no {want:?}"));
+        }
+        if !stderr.contains(message) {
+            why.push(format!("no {message:?}"));
+        }
+        if stderr.contains("panicked") || stderr.contains("backtrace") {
+            why.push("a panic".into());
+        }
+        if !absent_or_empty(&out) || !absent_or_empty(&golden) {
+            why.push("wrote files".into());
+        }
+        if !o.stdout.is_empty() {
+            why.push("printed to stdout".into());
+        }
+        if !why.is_empty() {
+            failures.push(format!("{file}: {} — stderr: {stderr}", why.join(", ")));
+        }
+    }
+    assert!(
+        failures.is_empty(),
+        "{} bad case(s) not rejected clearly:\n{}",
+        failures.len(),
+        failures.join("\n")
+    );
+}
