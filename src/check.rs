@@ -121,6 +121,35 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     let mut goldens = Vec::new();
     for (case, r) in cases.iter().zip(&results) {
         let mut case_rows = report::rows(r);
+        // A NaN deviation compares false with every tolerance and would read as a pass: any
+        // non-finite traced or closed-form value fails the case.
+        let non_finite: Vec<String> = r
+            .metrics
+            .iter()
+            .flat_map(|m| {
+                let analytic = (!m.analytic.iter().all(|x| x.is_finite()))
+                    .then(|| format!("{} analytic", m.name));
+                let traced = m
+                    .traced
+                    .iter()
+                    .filter(|(_, t)| !t.iter().all(|x| x.is_finite()))
+                    .map(|(l, _)| format!("{} traced {l}", m.name));
+                analytic.into_iter().chain(traced)
+            })
+            .collect();
+        if !non_finite.is_empty() {
+            case_rows.push(Row {
+                case: r.name.clone(),
+                fidelity: "all".into(),
+                metric: "finite".into(),
+                max_abs_dev: f64::NAN,
+                rms_dev: f64::NAN,
+                tolerance: None,
+                pass: Some(false),
+                seconds: 0.0,
+                note: format!("non-finite values in {}", non_finite.join(", ")),
+            });
+        }
         let golden_path = opts.golden_dir.join(format!("{}.csv", r.name));
         let text = report::golden_csv(r);
         let golden_row = |pass: bool, dev: f64, note: String| Row {

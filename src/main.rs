@@ -122,10 +122,10 @@ enum Command {
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Rays per source channel (comma-separated).
-        #[arg(long, value_delimiter = ',', default_values_t = [10_000usize, 40_000, 160_000, 640_000])]
+        #[arg(long, value_delimiter = ',', default_values_t = [10_000usize, 40_000, 160_000])]
         rays: Vec<usize>,
         /// Pixels per screen side (comma-separated).
-        #[arg(long, value_delimiter = ',', default_values_t = [16usize, 32, 64])]
+        #[arg(long, value_delimiter = ',', default_values_t = [4usize, 8, 16, 32])]
         pixels: Vec<usize>,
     },
 }
@@ -344,6 +344,17 @@ fn main() -> ExitCode {
                         );
                         ExitCode::SUCCESS
                     } else {
+                        for r in outcome.rows.iter().filter(|r| r.pass == Some(false)) {
+                            eprintln!(
+                                "  {} {} {}: max|dev| {:e} > {:e}; {}",
+                                r.case,
+                                r.fidelity,
+                                r.metric,
+                                r.max_abs_dev,
+                                r.tolerance.unwrap_or(f64::NAN),
+                                r.note
+                            );
+                        }
                         eprintln!("FAILED: {}", outcome.failed_cases.join(", "));
                         ExitCode::from(1)
                     }

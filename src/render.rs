@@ -194,7 +194,7 @@ pub struct Render {
     pub samples: usize,
     /// Whether some medium is dispersive (paths re-solved per wavelength).
     pub dispersive: bool,
-    /// Exact paths solved (successful ones), all pixels and wavelengths.
+    /// Arrivals traced (one per source channel and solved path), all pixels and wavelengths.
     pub paths: usize,
     /// Wall time of the render (s).
     pub seconds: f64,
@@ -368,7 +368,7 @@ struct Scratch {
 
 impl Context<'_> {
     /// Adds Σ_i W_i I_i of every shading at `point` into `out` (one [f64; 3] per shading);
-    /// returns the number of solved paths.
+    /// returns the number of arrivals traced.
     fn pixel(
         &self,
         point: DVec3,
@@ -654,7 +654,7 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
         g.rows
     };
     let mut lines = vec![format!(
-        "{}: {}x{} points, {} wavelength sample(s){}, {} path(s) solved in {:.2} s",
+        "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) traced in {:.2} s",
         case.spec.name,
         g.columns,
         g.rows,

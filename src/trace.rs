@@ -257,9 +257,7 @@ pub fn contributions(arrivals: &[Arrival], level: Fidelity) -> Vec<Contribution>
 /// Intensity of a set of arrivals at a rung of the ladder.
 pub fn intensity(arrivals: &[Arrival], level: Fidelity) -> f64 {
     let mut acc = Accumulator::new();
-    for c in contributions(arrivals, level) {
-        acc.add(&c);
-    }
+    acc.extend(&contributions(arrivals, level));
     acc.intensity()
 }
 

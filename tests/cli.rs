@@ -269,7 +269,7 @@ fn bless_writes_golden_files_only_into_the_given_folder() {
     lib.check(&["young_paper"])
         .assert()
         .code(1)
-        .stdout(predicate::str::contains("--bless"));
+        .stderr(predicate::str::contains("--bless"));
     lib.check(&["young_paper", "--bless"]).assert().code(0);
     let written: Vec<PathBuf> = snapshot(&lib.golden()).into_keys().collect();
     assert_eq!(written, vec![lib.golden().join("young_paper.csv")]);
