@@ -81,7 +81,6 @@ fn parse_checked(text: &str) -> Option<CaseFile> {
             assert!(!e.message.trim().is_empty(), "empty message at {}", e.json_path);
             assert_eq!(e.file, file);
             let shown = e.to_string();
-            if e.message.contains("does not fit") { eprintln!("DOESNOTFIT {} :: {} :: {}", e.json_path, e.message, text.replace('\n', " ")); }
             assert!(shown.starts_with("fuzz.json: $"), "{shown}");
             None
         }

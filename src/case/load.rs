@@ -205,13 +205,36 @@ fn serde_error(text: &str, e: serde_path_to_error::Error<serde_json::Error>) -> 
         .next()
         .unwrap_or("")
         .to_string();
+    // serde's words for JSON's.
     let nice_expected = |x: &str| -> String {
         match x {
             "f64" => "a number".into(),
             "usize" | "u64" => "a whole number ≥ 0 (no decimal point or exponent)".into(),
             "a boolean" => "true or false".into(),
+            "a sequence" => "an array".into(),
+            "a map" => "an object".into(),
+            _ if x.starts_with("struct variant ") => {
+                "an object naming the kind with its keys, e.g. {\"kind\": {…}}".into()
+            }
+            _ if x.starts_with("struct ") => "an object".into(),
             _ => x.to_string(),
         }
+    };
+    let nice_got = |x: &str| -> String {
+        match x {
+            "sequence" => "an array".into(),
+            "map" => "an object".into(),
+            "unit" => "null".into(),
+            _ => x.to_string(),
+        }
+    };
+    let json_kind = |v: &serde_json::Value| match v {
+        serde_json::Value::Null => "null",
+        serde_json::Value::Bool(_) => "a boolean",
+        serde_json::Value::Number(_) => "a number",
+        serde_json::Value::String(_) => "a string",
+        serde_json::Value::Array(_) => "an array",
+        serde_json::Value::Object(_) => "an object",
     };
     let mut message = if msg == "number out of range" {
         "the number is out of range: write a finite number (64-bit floats reach ±1.8e308, 1e999 is not one)".to_string()
@@ -220,14 +243,12 @@ fn serde_error(text: &str, e: serde_path_to_error::Error<serde_json::Error>) -> 
         format!("missing required key `{k}`")
     } else if let Some(k) = tick(&msg, "duplicate field `") {
         format!("the key `{k}` appears twice in one object")
-    } else if let Some(rest) = msg.strip_prefix("invalid type: ") {
+    } else if let Some(rest) = msg
+        .strip_prefix("invalid type: ")
+        .or_else(|| msg.strip_prefix("invalid value: "))
+    {
         match rest.rsplit_once(", expected ") {
-            Some((got, want)) => format!("expected {}, got {got}", nice_expected(want)),
-            None => msg.clone(),
-        }
-    } else if let Some(rest) = msg.strip_prefix("invalid value: ") {
-        match rest.rsplit_once(", expected ") {
-            Some((got, want)) => format!("expected {}, got {got}", nice_expected(want)),
+            Some((got, want)) => format!("expected {}, got {}", nice_expected(want), nice_got(got)),
             None => msg.clone(),
         }
     } else {
@@ -244,6 +265,16 @@ fn serde_error(text: &str, e: serde_path_to_error::Error<serde_json::Error>) -> 
                         "an object naming its kind must have exactly one key (the kind, e.g. {{\"monochrome\": {{…}}}}), got {} keys {:?}",
                         o.len(),
                         o.keys().collect::<Vec<_>>()
+                    ),
+                    Some((_, Some(serde_json::Value::Array(a)))) if msg == "trailing characters" => {
+                        format!(
+                            "too many elements ({}) here: a point or direction is [x, y, z], a size or centre [u, v]",
+                            a.len()
+                        )
+                    }
+                    Some((_, Some(v))) if msg == "expected value" => format!(
+                        "expected an object naming its kind (e.g. {{\"monochrome\": {{…}}}}), got {}",
+                        json_kind(v)
                     ),
                     Some(_) => format!("this value does not fit the case format here ({msg})"),
                     None => format!("malformed JSON: {msg}"),
@@ -1282,20 +1313,16 @@ impl Validator {
                         surface_normal,
                         in_plane_axis,
                     } => {
-                        self.range(
-                            "$.probe.sweep.from",
-                            *from,
-                            0.0,
-                            90.0,
-                            "an angle of incidence (degrees)",
-                        );
-                        self.range(
-                            "$.probe.sweep.to",
-                            *to,
-                            0.0,
-                            90.0,
-                            "an angle of incidence (degrees)",
-                        );
+                        // 90° is grazing: the wave runs along the surface and never meets it.
+                        for (key, x) in [("from", *from), ("to", *to)] {
+                            let path = format!("$.probe.sweep.{key}");
+                            if self.finite(&path, x) && !(0.0..90.0).contains(&x) {
+                                self.fail(
+                                    &path,
+                                    format!("an angle of incidence (degrees) must be in [0, 90) (90 is grazing), got {}", num(x)),
+                                );
+                            }
+                        }
                         self.direction(
                             "$.probe.sweep.parameter.incidence_angle_deg.surface_normal",
                             surface_normal,
