@@ -25,11 +25,11 @@
 use crate::accumulate::Accumulator;
 use crate::case::build::{self, Built, GridGeometry, Overrides};
 use crate::case::load::Case;
-use crate::case::spec::{Observer, Probe, ReferenceModel};
+use crate::case::spec::{Observer, Probe};
 use crate::colour::SpectralIntegrator;
 use crate::fidelity::Fidelity;
 use crate::material::Dispersion;
-use crate::path::{EnumerationLimits, SolveOptions, Target};
+use crate::path::Target;
 use crate::ray::Field3;
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::{self, Arrival, Plan, TraceSettings};
@@ -221,40 +221,7 @@ pub fn is_dispersive(built: &Built) -> bool {
 /// The tracer settings `fringe check` uses for this case (mirrors `case::run`): the case's
 /// internal-reflection budget (or the Airy tail rule at `lambda_m`), spreading as configured.
 pub fn trace_settings(case: &Case, built: &Built, lambda_m: f64) -> Result<TraceSettings, String> {
-    let spec = &case.spec;
-    let internal = match spec.trace.airy_tail_epsilon {
-        None => spec.trace.max_internal_reflections,
-        Some(eps) => {
-            let film = spec
-                .references
-                .iter()
-                .find_map(|r| match &r.model {
-                    ReferenceModel::Airy { film, .. } => Some(film.clone()),
-                    _ => None,
-                })
-                .ok_or("airy_tail_epsilon needs an `airy` reference naming the film")?;
-            let (f, cos1) = crate::case::reference::airy_film(built, &film, lambda_m)?;
-            let orders = [
-                crate::analytic::plate::Pol::S,
-                crate::analytic::plate::Pol::P,
-            ]
-            .into_iter()
-            .map(|p| f.orders_for_bound(cos1, lambda_m, p, eps))
-            .max()
-            .unwrap_or(1);
-            (2 * orders + 1).min(crate::case::load::limits::MAX_INTERNAL_REFLECTIONS)
-        }
-    };
-    Ok(TraceSettings {
-        limits: EnumerationLimits {
-            max_internal_reflections: internal,
-            max_events: 2 * internal + 2 * built.scene.surfaces.len() + 4,
-        },
-        solve: SolveOptions {
-            spreading: spec.trace.spreading,
-            ..SolveOptions::default()
-        },
-    })
+    crate::case::run::trace_settings(case, built, lambda_m).map_err(|e| e.to_string())
 }
 
 /// The arrivals a one-sided screen point records, with `plan`'s sequences.

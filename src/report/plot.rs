@@ -39,12 +39,12 @@ pub const CONVERGENCE_SIZE: (u32, u32) = (800, 480);
 /// Floor of the log deviation axis: exact zeros are drawn here.
 const DEV_FLOOR: f64 = 1e-17;
 
-fn err<E: std::fmt::Display>(e: E) -> String {
+pub(crate) fn err<E: std::fmt::Display>(e: E) -> String {
     format!("plot: {e}")
 }
 
 /// Draws with `draw` on a white `size` bitmap and returns it as PNG bytes.
-fn render_png(
+pub(crate) fn render_png(
     size: (u32, u32),
     draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
 ) -> Result<Vec<u8>, String> {

@@ -1,36 +1,14 @@
 //! Plots of the trade-off reports: the Pareto plot of one case (time vs error, log–log) and the
 //! renderer-mode study (error vs rays per pixel per estimator and pixel size).
 
-use super::image::encode_png;
-use super::plot::{level_colour, register_font};
+use super::plot::{err, level_colour, render_png as png};
 use crate::fidelity::Fidelity;
 use crate::forward_study::StudyRow;
 use crate::tradeoff::{TradeoffRow, pareto};
-use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// Deviations below this are drawn on the floor of the log axis.
 const FLOOR: f64 = 1e-17;
-
-fn err<E: std::fmt::Display>(e: E) -> String {
-    format!("plot: {e}")
-}
-
-fn png(
-    size: (u32, u32),
-    draw: impl FnOnce(&DrawingArea<BitMapBackend<'_>, Shift>) -> Result<(), String>,
-) -> Result<Vec<u8>, String> {
-    register_font();
-    let mut buf = vec![255u8; size.0 as usize * size.1 as usize * 3];
-    {
-        let root = BitMapBackend::with_buffer(&mut buf, size).into_drawing_area();
-        root.fill(&WHITE).map_err(err)?;
-        draw(&root)?;
-        root.present().map_err(err)?;
-    }
-    let pixels: Vec<[u8; 3]> = buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    encode_png(size.0 as usize, size.1 as usize, &pixels)
-}
 
 fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     let (lo, hi) = values
