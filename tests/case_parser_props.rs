@@ -17,7 +17,7 @@ mod schema;
 
 use fringe::case::build::{self, Overrides};
 use fringe::case::load::{self, limits};
-use fringe::case::spec::{CaseFile, Probe};
+use fringe::case::spec::{CaseFile, Probe, SweepParameter};
 use fringe::source::Emitter;
 use proptest::prelude::*;
 use serde_json::{Value, json};
@@ -78,7 +78,11 @@ fn parse_checked(text: &str) -> Option<CaseFile> {
                 "JSON path {:?} does not start with $ ({e})",
                 e.json_path
             );
-            assert!(!e.message.trim().is_empty(), "empty message at {}", e.json_path);
+            assert!(
+                !e.message.trim().is_empty(),
+                "empty message at {}",
+                e.json_path
+            );
             assert_eq!(e.file, file);
             let shown = e.to_string();
             assert!(shown.starts_with("fuzz.json: $"), "{shown}");
@@ -113,7 +117,11 @@ fn check_builds(spec: &CaseFile) {
         let built = build::build_scene(&spec.scene, ov)
             .unwrap_or_else(|e| panic!("an accepted case does not build: {e}"));
         for s in &built.scene.surfaces {
-            assert!(finite(s.plane.point) && finite(s.plane.normal), "{}", s.name);
+            assert!(
+                finite(s.plane.point) && finite(s.plane.normal),
+                "{}",
+                s.name
+            );
             assert!((s.plane.normal.length() - 1.0).abs() < 1e-9, "{}", s.name);
         }
         for s in &built.scene.sources {
@@ -134,7 +142,10 @@ fn check_builds(spec: &CaseFile) {
         let spectrum = build::spectrum(&spec.light, ov);
         assert!(!spectrum.is_empty());
         let total: f64 = spectrum.iter().map(|s| s.1).sum();
-        assert!((total - 1.0).abs() < 1e-9, "spectral weights sum to {total}");
+        assert!(
+            (total - 1.0).abs() < 1e-9,
+            "spectral weights sum to {total}"
+        );
         for (lambda, w) in &spectrum {
             let nm = lambda * 1e9;
             assert!(
@@ -146,11 +157,27 @@ fn check_builds(spec: &CaseFile) {
         }
         // The optics (every index) at the traced wavelengths.
         let lambdas: Vec<f64> = if spectrum.len() > 3 {
-            vec![spectrum[0].0, spectrum[spectrum.len() / 2].0, spectrum[spectrum.len() - 1].0]
+            vec![
+                spectrum[0].0,
+                spectrum[spectrum.len() / 2].0,
+                spectrum[spectrum.len() - 1].0,
+            ]
         } else {
             spectrum.iter().map(|s| s.0).collect()
         };
+        // (In a wavelength sweep the light's own wavelength is never traced: only the probe
+        // points' spectra, k > 0, must have optics.)
+        let wavelength_sweep = matches!(
+            spec.probe,
+            Probe::Sweep {
+                parameter: SweepParameter::WavelengthNm {},
+                ..
+            }
+        );
         for l in lambdas {
+            if k == 0 && wavelength_sweep {
+                continue;
+            }
             built
                 .scene
                 .optics(l)
@@ -167,10 +194,37 @@ fn check_builds(spec: &CaseFile) {
 // Strategies.
 
 const KEYS: &[&str] = &[
-    "name", "description", "formula", "light", "scene", "probe", "references", "fidelities",
-    "trace", "monochrome", "gaussian", "wavelength_nm", "center_nm", "fwhm_nm", "samples",
-    "ambient", "media", "surfaces", "sources", "constant", "n", "plate", "thickness_um",
-    "count", "line", "sweep", "grid", "pixels", "model", "tolerances", "vector",
+    "name",
+    "description",
+    "formula",
+    "light",
+    "scene",
+    "probe",
+    "references",
+    "fidelities",
+    "trace",
+    "monochrome",
+    "gaussian",
+    "wavelength_nm",
+    "center_nm",
+    "fwhm_nm",
+    "samples",
+    "ambient",
+    "media",
+    "surfaces",
+    "sources",
+    "constant",
+    "n",
+    "plate",
+    "thickness_um",
+    "count",
+    "line",
+    "sweep",
+    "grid",
+    "pixels",
+    "model",
+    "tolerances",
+    "vector",
 ];
 
 fn number() -> impl Strategy<Value = Value> {
@@ -508,8 +562,7 @@ proptest! {
 fn regressions() {
     let dir = root().join("tests/bad_cases");
     let expected: Value =
-        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap())
-            .unwrap();
+        serde_json::from_str(&std::fs::read_to_string(dir.join("expected.json")).unwrap()).unwrap();
     for (file, e) in expected.as_object().unwrap() {
         let Ok(text) = std::fs::read_to_string(dir.join(file)) else {
             continue; // not UTF-8: load() rejects it before parse()

@@ -266,7 +266,9 @@ fn serde_error(text: &str, e: serde_path_to_error::Error<serde_json::Error>) -> 
                         o.len(),
                         o.keys().collect::<Vec<_>>()
                     ),
-                    Some((_, Some(serde_json::Value::Array(a)))) if msg == "trailing characters" => {
+                    Some((_, Some(serde_json::Value::Array(a))))
+                        if msg == "trailing characters" =>
+                    {
                         format!(
                             "too many elements ({}) here: a point or direction is [x, y, z], a size or centre [u, v]",
                             a.len()
