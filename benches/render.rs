@@ -12,12 +12,16 @@ use std::time::Duration;
 
 fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("render");
-    group.sample_size(10).measurement_time(Duration::from_secs(5));
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(5));
     for name in ["plate_two_beam_paper", "young_paper", "plate_airy_s"] {
         let case = load::load(Path::new(&format!("cases/{name}.json"))).expect("library case");
         let points = build::probe_points(&case.spec.probe).len();
         group.throughput(Throughput::Elements(points as u64));
-        group.bench_function(name, |b| b.iter(|| black_box(run::run_with(black_box(&case), false).expect("case runs"))));
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(run::run_with(black_box(&case), false).expect("case runs")))
+        });
     }
     group.finish();
 }

@@ -239,7 +239,9 @@ pub fn run(seed: u64, ray_counts: &[usize], pixel_counts: &[usize]) -> Vec<Study
             let exact = exact_image(s);
             // Errors relative to the brightest intensity without interference (I1 + I2 + …): a
             // scale that stays meaningful when point samples alias onto dark fringes.
-            let scale = exact_image_at(s, Fidelity::Incoherent).into_iter().fold(0.0f64, f64::max);
+            let scale = exact_image_at(s, Fidelity::Incoherent)
+                .into_iter()
+                .fold(0.0f64, f64::max);
             let optics = s.scene.optics(s.lambda_m).expect("constant indices");
             for &rays in ray_counts {
                 let st = ForwardSettings {

@@ -334,30 +334,13 @@ fn airy(
     lambda_m: f64,
 ) -> Result<f64, String> {
     let scene = &built.scene;
-    let (top, bottom) = (
-        built.surface(&format!("{film}.top"))?,
-        built.surface(&format!("{film}.bottom"))?,
-    );
-    let (
-        SurfaceKind::Interface {
-            front: m1,
-            back: m2,
-            ..
-        },
-        SurfaceKind::Interface { back: m3, .. },
-    ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
-    else {
-        return Err("airy: the film faces must be interfaces".into());
-    };
-    let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
-    let nrm = scene.surfaces[top].plane.normal;
-    let f = analytic::plate::Film {
-        n1: ix(m1)?,
-        n2: index_override.map(Ok).unwrap_or_else(|| ix(m2))?,
-        n3: ix(m3)?,
-        thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
-            .dot(nrm),
-    };
+    let (mut f, _) = airy_film(built, film, lambda_m)?;
+    if let Some(n) = index_override {
+        f.n2 = n;
+    }
+    let nrm = scene.surfaces[built.surface(&format!("{film}.top"))?]
+        .plane
+        .normal;
     let src = scene.sources.first().ok_or("airy needs a source")?;
     let Emitter::PlaneWave { direction: d, .. } = src.emitter else {
         return Err("airy needs a plane-wave source".into());

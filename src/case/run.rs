@@ -175,8 +175,16 @@ fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usi
 
 /// The tracer settings of a case at a probe point: its internal-reflection budget (or the Airy
 /// tail rule at `lambda_m`), spreading as configured.
-pub fn trace_settings(case: &Case, built: &Built, lambda_m: f64) -> Result<TraceSettings, CaseError> {
-    Ok(settings(case, built, internal_reflections(case, built, lambda_m)?))
+pub fn trace_settings(
+    case: &Case,
+    built: &Built,
+    lambda_m: f64,
+) -> Result<TraceSettings, CaseError> {
+    Ok(settings(
+        case,
+        built,
+        internal_reflections(case, built, lambda_m)?,
+    ))
 }
 
 fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
