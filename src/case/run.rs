@@ -69,7 +69,7 @@ impl MetricResult {
         let d = self.deviations(level)?;
         let (mut max, mut at) = (0.0f64, self.coordinates.first().copied().unwrap_or(0.0));
         for (k, x) in d.iter().enumerate() {
-            if *x > max {
+            if *x > max || x.is_nan() {
                 max = *x;
                 at = self.coordinates[k];
             }
