@@ -113,6 +113,24 @@ fn extent(rect: &Option<RectSpec>, plane: &Plane) -> Extent {
     }
 }
 
+/// A planar surface of the case's kind `kind`, through `point_m` with `normal`, bounded by
+/// `rect` if given.
+fn planar(
+    name: &str,
+    point_m: &Vec3,
+    normal: &Vec3,
+    rect: &Option<RectSpec>,
+    kind: SurfaceKind,
+) -> Surface {
+    let plane = Plane::new(v(point_m), v(normal));
+    Surface {
+        name: name.to_string(),
+        plane,
+        extent: extent(rect, &plane),
+        kind,
+    }
+}
+
 /// The plane-wave direction of an incidence override.
 pub fn incidence_direction(theta: f64, normal: DVec3, axis: DVec3) -> DVec3 {
     let n = normal.normalize();
@@ -151,17 +169,14 @@ pub fn build_scene(spec: &SceneSpec, ov: &Overrides) -> Result<Built, String> {
                 rect,
                 coherence: c,
             } => {
-                let plane = Plane::new(v(point_m), v(normal));
-                scene.surfaces.push(Surface {
-                    name: name.clone(),
-                    plane,
-                    extent: extent(rect, &plane),
-                    kind: SurfaceKind::Interface {
-                        front: get(front)?,
-                        back: get(back)?,
-                        coherence: coherence(c),
-                    },
-                });
+                let kind = SurfaceKind::Interface {
+                    front: get(front)?,
+                    back: get(back)?,
+                    coherence: coherence(c),
+                };
+                scene
+                    .surfaces
+                    .push(planar(name, point_m, normal, rect, kind));
             }
             SurfaceSpec::Plate {
                 name,
@@ -219,15 +234,12 @@ pub fn build_scene(spec: &SceneSpec, ov: &Overrides) -> Result<Built, String> {
                 normal,
                 rect,
             } => {
-                let plane = Plane::new(v(point_m), v(normal));
-                scene.surfaces.push(Surface {
-                    name: name.clone(),
-                    plane,
-                    extent: extent(rect, &plane),
-                    kind: SurfaceKind::IdealMirror {
-                        coherence: CoherenceRules::default(),
-                    },
-                });
+                let kind = SurfaceKind::IdealMirror {
+                    coherence: CoherenceRules::default(),
+                };
+                scene
+                    .surfaces
+                    .push(planar(name, point_m, normal, rect, kind));
             }
             SurfaceSpec::Splitter {
                 name,
@@ -236,17 +248,14 @@ pub fn build_scene(spec: &SceneSpec, ov: &Overrides) -> Result<Built, String> {
                 reflectance,
                 rect,
             } => {
-                let plane = Plane::new(v(point_m), v(normal));
-                scene.surfaces.push(Surface {
-                    name: name.clone(),
-                    plane,
-                    extent: extent(rect, &plane),
-                    kind: SurfaceKind::Splitter {
-                        reflectance: *reflectance,
-                        medium: get(&spec.ambient)?,
-                        coherence: CoherenceRules::default(),
-                    },
-                });
+                let kind = SurfaceKind::Splitter {
+                    reflectance: *reflectance,
+                    medium: get(&spec.ambient)?,
+                    coherence: CoherenceRules::default(),
+                };
+                scene
+                    .surfaces
+                    .push(planar(name, point_m, normal, rect, kind));
             }
             SurfaceSpec::Shield {
                 name,
@@ -254,13 +263,10 @@ pub fn build_scene(spec: &SceneSpec, ov: &Overrides) -> Result<Built, String> {
                 normal,
                 rect,
             } => {
-                let plane = Plane::new(v(point_m), v(normal));
-                scene.surfaces.push(Surface {
-                    name: name.clone(),
-                    plane,
-                    extent: extent(&Some(rect.clone()), &plane),
-                    kind: SurfaceKind::Opaque { apertures: vec![] },
-                });
+                let kind = SurfaceKind::Opaque { apertures: vec![] };
+                scene
+                    .surfaces
+                    .push(planar(name, point_m, normal, &Some(rect.clone()), kind));
             }
             SurfaceSpec::OpaqueScreen {
                 name,

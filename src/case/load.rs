@@ -864,6 +864,25 @@ impl Validator {
         }
     }
 
+    /// The thickness and the three media of a plate or wedge at `q`.
+    fn slab(
+        &mut self,
+        q: &str,
+        thickness_um: f64,
+        media: [&String; 3],
+        defined: &BTreeMap<String, MediumSpec>,
+    ) {
+        self.positive(
+            &format!("{q}.thickness_um"),
+            thickness_um,
+            1e6,
+            "a thickness (µm)",
+        );
+        for (k, m) in ["medium", "above", "below"].into_iter().zip(media) {
+            self.medium_ref(&format!("{q}.{k}"), m, defined);
+        }
+    }
+
     fn surface(&mut self, p: &str, surf: &SurfaceSpec, s: &SceneSpec) {
         match surf {
             SurfaceSpec::Interface {
@@ -895,15 +914,7 @@ impl Validator {
                 let q = format!("{p}.plate");
                 self.point(&format!("{q}.top_point_m"), top_point_m);
                 self.direction(&format!("{q}.normal"), normal);
-                self.positive(
-                    &format!("{q}.thickness_um"),
-                    *thickness_um,
-                    1e6,
-                    "a thickness (µm)",
-                );
-                for (k, m) in [("medium", medium), ("above", above), ("below", below)] {
-                    self.medium_ref(&format!("{q}.{k}"), m, &s.media);
-                }
+                self.slab(&q, *thickness_um, [medium, above, below], &s.media);
             }
             SurfaceSpec::Wedge {
                 top_point_m,
@@ -927,20 +938,12 @@ impl Validator {
                     "the hinge axis must not be parallel to the wedge's normal",
                 );
                 self.positive(
-                    &format!("{q}.thickness_um"),
-                    *thickness_um,
-                    1e6,
-                    "a thickness (µm)",
-                );
-                self.positive(
                     &format!("{q}.angle_deg"),
                     *angle_deg,
                     10.0,
                     "a wedge angle (degrees)",
                 );
-                for (k, m) in [("medium", medium), ("above", above), ("below", below)] {
-                    self.medium_ref(&format!("{q}.{k}"), m, &s.media);
-                }
+                self.slab(&q, *thickness_um, [medium, above, below], &s.media);
             }
             SurfaceSpec::Mirror {
                 point_m,
