@@ -19,5 +19,6 @@ pub mod render;
 pub mod report;
 pub mod scene;
 pub mod source;
+pub mod stability;
 pub mod trace;
 pub mod tradeoff;
