@@ -1,9 +1,12 @@
 //! `fringe check`: resolve case names, run them, compare with closed forms and golden files,
-//! write reports atomically, and decide the exit code (0 pass, 1 a case failed, 2 bad input).
+//! run the stability sweep (`src/stability.rs`, on every run: it is cheap and checks the tracer
+//! every case relies on), write reports atomically, and decide the exit code (0 pass, 1 a case
+//! or a stability check failed, 2 bad input).
 
 use crate::case::load::{self, Case, CaseError};
 use crate::case::run::{self, CaseResult};
 use crate::report::{self, GoldenError, Row};
+use crate::stability::{self, StabilityRow, Sweep};
 use std::path::{Path, PathBuf};
 
 /// Output format of the verdict table.
@@ -93,9 +96,101 @@ pub fn resolve(opts: &CheckOptions) -> Result<Vec<PathBuf>, InputError> {
 
 /// What a check produced.
 pub struct CheckOutcome {
+    /// Verdict rows of every case, then the stability rows (case `stability`).
     pub rows: Vec<Row>,
     pub results: Vec<CaseResult>,
+    /// Failed cases by name; `stability` when a stability check failed.
     pub failed_cases: Vec<String>,
+    pub stability: Sweep,
+}
+
+/// The name under which the stability sweep appears in the verdict table.
+pub const STABILITY: &str = "stability";
+
+/// Verdict-table rows of the stability sweep: one per group of judged checks, with deviations
+/// as fractions of each check's own tolerance (so groups mixing absolute and relative checks
+/// read alike: ≤ 1 passes), then one row per failing check with its own deviation and
+/// tolerance.
+pub fn stability_table_rows(sweep: &Sweep) -> Vec<Row> {
+    let mut groups: Vec<&str> = Vec::new();
+    for r in &sweep.rows {
+        if r.pass.is_some() && !groups.contains(&r.group.as_str()) {
+            groups.push(&r.group);
+        }
+    }
+    let ratio = |r: &StabilityRow| {
+        let finite = r.traced.is_finite() && r.closed_form.is_finite() && r.deviation.is_finite();
+        if !finite {
+            f64::NAN
+        } else if r.deviation == 0.0 {
+            // Also for exact checks (tolerance 0).
+            0.0
+        } else {
+            r.deviation / r.tolerance.unwrap_or(f64::NAN)
+        }
+    };
+    let mut out = Vec::new();
+    for g in groups {
+        let checks: Vec<&StabilityRow> = sweep
+            .rows
+            .iter()
+            .filter(|r| r.group == g && r.pass.is_some())
+            .collect();
+        let ratios: Vec<f64> = checks.iter().map(|r| ratio(r)).collect();
+        // NaN is the worst value.
+        let (worst_k, worst) = ratios
+            .iter()
+            .enumerate()
+            .fold((0, 0.0f64), |(k, w), (i, &v)| {
+                if w.is_nan() || !(v.is_nan() || v > w) {
+                    (k, w)
+                } else {
+                    (i, v)
+                }
+            });
+        let rms = (ratios.iter().map(|v| v * v).sum::<f64>() / ratios.len() as f64).sqrt();
+        let w = checks[worst_k];
+        out.push(Row {
+            case: STABILITY.into(),
+            fidelity: "vector".into(),
+            metric: g.into(),
+            max_abs_dev: worst,
+            rms_dev: rms,
+            tolerance: Some(1.0),
+            pass: Some(checks.iter().all(|r| r.pass == Some(true))),
+            seconds: sweep.seconds,
+            note: format!(
+                "{} checks, deviation/tolerance; worst: {}, {}: {} deviation {:e} (tolerance {:e})",
+                checks.len(),
+                w.condition,
+                w.quantity,
+                w.deviation_kind.name(),
+                w.deviation,
+                w.tolerance.unwrap_or(f64::NAN)
+            ),
+        });
+    }
+    for r in sweep.failures() {
+        out.push(Row {
+            case: STABILITY.into(),
+            fidelity: "vector".into(),
+            metric: r.quantity.clone(),
+            max_abs_dev: r.deviation,
+            rms_dev: r.deviation,
+            tolerance: r.tolerance,
+            pass: Some(false),
+            seconds: sweep.seconds,
+            note: format!(
+                "{}: {}: traced {:e}, closed form {:e}, {} deviation",
+                r.group,
+                r.condition,
+                r.traced,
+                r.closed_form,
+                r.deviation_kind.name()
+            ),
+        });
+    }
+    out
 }
 
 /// Load every case (all must be valid before anything runs), run them, compare, write.
@@ -197,6 +292,11 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         rows.extend(case_rows);
     }
 
+    // The stability sweep: judged like a case, its plot drawn before anything is written.
+    let sweep = stability::sweep();
+    rows.extend(stability_table_rows(&sweep));
+    let stability_png = report::plot::stability_paths_png(&sweep.paths).map_err(InputError)?;
+
     // Everything ran: now write, each file atomically.
     let io =
         |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
@@ -232,6 +332,10 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     for (p, text) in &goldens {
         report::write_atomic(p, text.as_bytes()).map_err(|e| io(p, e))?;
     }
+    let p = opts.out.join("stability.csv");
+    report::write_atomic(&p, stability::csv(&sweep.rows).as_bytes()).map_err(|e| io(&p, e))?;
+    let p = opts.out.join("stability_paths.png");
+    report::write_atomic(&p, &stability_png).map_err(|e| io(&p, e))?;
     // The whole library also makes the paper's figures (src/figures.rs); then the one-page
     // report index.html embeds everything written above.
     if opts.cases.is_empty() {
@@ -254,5 +358,6 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         rows,
         results,
         failed_cases,
+        stability: sweep,
     })
 }

@@ -338,8 +338,14 @@ fn main() -> ExitCode {
                     }
                     if outcome.failed_cases.is_empty() {
                         eprintln!(
-                            "all {} case(s) pass; reports in {}",
+                            "all {} case(s) pass, and all {} stability checks; reports in {}",
                             outcome.results.len(),
+                            outcome
+                                .stability
+                                .rows
+                                .iter()
+                                .filter(|r| r.pass.is_some())
+                                .count(),
                             opts.out.display()
                         );
                         ExitCode::SUCCESS

@@ -129,6 +129,38 @@ fn a_passing_case_exits_0_and_writes_its_reports() {
     );
 }
 
+/// Every check, with or without CASE arguments, runs the stability sweep: its verdict rows are
+/// printed with the cases', and it writes stability.csv, stability_paths.png and the report's
+/// stability section.
+#[test]
+fn check_runs_the_stability_sweep_and_reports_it() {
+    let lib = Lib::new(&["young_paper"]);
+    lib.check(&["young_paper"])
+        .assert()
+        .code(0)
+        .stdout(predicate::str::is_match(r"(?m)^stability\s+vector\s+paths\s.*\spass\s").unwrap())
+        .stderr(predicate::str::contains("stability checks"));
+    let text = std::fs::read_to_string(lib.out().join("stability.csv")).unwrap();
+    let mut lines = text.lines();
+    assert_eq!(lines.next(), Some(fringe::stability::CSV_HEADER));
+    let rows: Vec<&str> = lines.collect();
+    assert!(rows.len() >= 40, "{} stability rows", rows.len());
+    assert!(
+        rows.iter()
+            .all(|l| l.ends_with(",pass") || l.ends_with(",info"))
+    );
+    assert!(rows.iter().any(|l| l.starts_with("paths,")));
+    let png = std::fs::read(lib.out().join("stability_paths.png")).unwrap();
+    assert!(
+        png.starts_with(b"\x89PNG"),
+        "stability_paths.png is not a PNG"
+    );
+    let page = std::fs::read_to_string(lib.out().join("index.html")).unwrap();
+    assert!(page.contains("<section id=\"stability\">"));
+    assert!(page.contains("href=\"#stability\""));
+    assert!(page.contains("binary32"));
+}
+
 #[test]
 fn a_case_file_given_by_path_runs() {
     let lib = Lib::new(&["young_paper"]);
@@ -244,8 +276,16 @@ fn json_format_prints_an_array_of_rows() {
         ] {
             assert!(r.get(key).is_some(), "row without {key}: {r}");
         }
-        assert_eq!(r["case"], "young_paper");
+        // The case's rows, then the stability sweep's (run on every check).
+        assert!(
+            r["case"] == "young_paper" || r["case"] == "stability",
+            "{r}"
+        );
     }
+    assert!(
+        rows.iter()
+            .any(|r| r["case"] == "stability" && r["pass"] == true)
+    );
     assert!(
         rows.iter()
             .any(|r| r["metric"] == "golden" && r["pass"] == true)

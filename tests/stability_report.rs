@@ -106,3 +106,34 @@ fn binary32_absolute_phases_fail_at_one_metre_where_fringe_does_not() {
     assert_eq!(sweep_row.deviation_kind, DeviationKind::Absolute);
     assert!(sweep_row.deviation <= PATH_PHASE_TOLERANCE_RAD);
 }
+
+/// A failing stability check fails `fringe check` (case `stability` in the failed list, exit 1):
+/// its group row fails, and the check itself is printed as a row of its own. A NaN fails too.
+#[test]
+fn a_failing_stability_check_becomes_failing_table_rows() {
+    let mut sweep = stability::sweep();
+    let good = sweep.rows.len();
+    let k = sweep.rows.iter().position(|r| r.group == "films").unwrap();
+    sweep.rows[k].deviation = 1.0;
+    sweep.rows[k].pass = Some(false);
+    let nan = sweep.rows.iter().position(|r| r.group == "paths").unwrap();
+    sweep.rows[nan].deviation = f64::NAN;
+    sweep.rows[nan].pass = Some(false);
+    let rows = fringe::check::stability_table_rows(&sweep);
+    assert!(rows.iter().all(|r| r.case == fringe::check::STABILITY));
+    let group = |g: &str| rows.iter().find(|r| r.metric == g).unwrap();
+    assert_eq!(group("films").pass, Some(false));
+    assert!(group("films").max_abs_dev > 1.0);
+    assert_eq!(group("paths").pass, Some(false));
+    assert!(group("paths").max_abs_dev.is_nan());
+    assert_eq!(group("incidence").pass, Some(true));
+    let failing: Vec<_> = rows
+        .iter()
+        .filter(|r| r.metric == sweep.rows[k].quantity && r.note.contains(&sweep.rows[k].condition))
+        .collect();
+    assert_eq!(failing.len(), 1, "{rows:#?}");
+    assert_eq!(failing[0].max_abs_dev, 1.0);
+    assert_eq!(sweep.rows.len(), good);
+    let table = fringe::report::table(&rows);
+    assert!(table.contains("FAIL"), "{table}");
+}

@@ -238,6 +238,18 @@ pub fn index_html(out: &Path) -> Result<String, String> {
             format!(" ({})", escape(&failed.join(", ")))
         }
     );
+    let stability = stability_rows(out)?;
+    if let Some(rows) = &stability {
+        let judged = rows.iter().filter(|r| r.verdict != "info").count();
+        let failed = rows.iter().filter(|r| r.verdict == "FAIL").count();
+        let _ = writeln!(
+            h,
+            "<p><a href=\"#stability\">Stability sweep</a> (numerical extremes, optical paths 1 nm – 10 m): \
+             <span class=\"badge {}\">{} of {judged} checks pass</span></p>",
+            if failed == 0 { "pass" } else { "fail" },
+            judged - failed
+        );
+    }
     if out.join("figures/figures.json").is_file() {
         h.push_str("<p><a href=\"#figures\">The paper's figures, Newton's colours and the colour error ↓</a></p>\n");
     }
@@ -306,7 +318,11 @@ pub fn index_html(out: &Path) -> Result<String, String> {
             );
         }
     }
-    h.push_str("</table>\n<h2>Cases</h2>\n");
+    h.push_str("</table>\n");
+    if let Some(rows) = &stability {
+        stability_section(&mut h, out, rows);
+    }
+    h.push_str("<h2>Cases</h2>\n");
 
     for c in &cases {
         let name = s(c, "case");
@@ -354,6 +370,106 @@ pub fn index_html(out: &Path) -> Result<String, String> {
     }
     h.push_str("</body></html>\n");
     Ok(h)
+}
+
+/// One line of `stability.csv` as the page reads it back (numbers as written).
+#[derive(Debug, Deserialize)]
+struct StabilityCsvRow {
+    group: String,
+    condition: String,
+    quantity: String,
+    traced: String,
+    closed_form: String,
+    deviation: String,
+    deviation_kind: String,
+    tolerance: String,
+    verdict: String,
+}
+
+/// The rows of `<out>/stability.csv`, `None` when the file is absent.
+fn stability_rows(out: &Path) -> Result<Option<Vec<StabilityCsvRow>>, String> {
+    let p = out.join("stability.csv");
+    let Ok(text) = std::fs::read_to_string(&p) else {
+        return Ok(None);
+    };
+    csv::Reader::from_reader(text.as_bytes())
+        .deserialize()
+        .collect::<Result<Vec<StabilityCsvRow>, _>>()
+        .map(Some)
+        .map_err(|e| format!("{}: {e}", p.display()))
+}
+
+/// A number of `stability.csv` with `digits` significant digits (text kept if it is not one).
+fn sig(text: &str, digits: usize) -> String {
+    match text.parse::<f64>() {
+        Ok(v) if v.is_finite() => format!("{v:.prec$e}", prec = digits.saturating_sub(1)),
+        _ => text.to_string(),
+    }
+}
+
+fn stability_section(h: &mut String, out: &Path, rows: &[StabilityCsvRow]) {
+    h.push_str(
+        "<section id=\"stability\"><h2>Stability</h2>\n<p>The tracer at numerical extremes \
+         (the conditions of <code>tests/stability.rs</code>): normal incidence, 1e-12 rad, \
+         Brewster's and the critical angle ± 1e-12 rad, 89.9999° and grazing; n1 = n2, \
+         n2 − n1 = 1e-12, n = 4; films from 0.1 nm to 1 mm against the Airy sum; the high-finesse \
+         tail bound; random films; two-beam phases for optical paths from 1 nm to 10 m. Each traced \
+         value (vector fidelity, through the tracer) is compared with a closed form evaluated \
+         independently (sine and tangent Fresnel forms, first-order expansions at the singular \
+         points, the TIR half-angle retardance, Airy). Deviations are absolute or relative to the \
+         closed form, as the row says; near a singular point the offset 1e-12 rad is itself known \
+         only to ~1e-16 rad, so vanishing quantities are compared relative to their size. \
+         <code>fringe check</code> runs this sweep on every run (it takes well under a second). \
+         Data: <a href=\"stability.csv\">stability.csv</a>.</p>\n",
+    );
+    h.push_str(&embed(
+        &out.join("stability_paths.png"),
+        "two-beam phase error against optical path",
+        "plot",
+    ));
+    h.push_str(
+        "<p>The plot shows how far the two-beam phase 2πΔs/λ of two coherent beams with optical \
+         paths s and s + Δs lands from the exact value, worst of 8 path differences Δs per path \
+         length. Red: each beam's phase formed from its absolute path stored in single precision \
+         (IEEE binary32, emulated by rounding to a 24-bit significand), then subtracted: storing a \
+         path of 1 m moves it by up to half a binary32 spacing (6e-8 m just below 1 m, 1.2e-7 m \
+         just above), up to 0.7 rad of phase, so the fringes land in the wrong place, and beyond \
+         π (dotted) anywhere. Blue: the same in f64, ~1e-9 rad at \
+         1 m. Green: fringe, whose traced f64 paths are differenced in metres before the phase is \
+         formed, stays far below the 1e-6 rad bound (dashed) from 1 nm to 10 m. Only fringe's rows \
+         are judged; the other two are shown for information.</p>\n",
+    );
+    h.push_str(
+        "<table><tr><th>group</th><th>condition</th><th>quantity</th><th>traced</th>\
+         <th>closed form</th><th>|deviation|</th><th>tolerance</th><th>verdict</th></tr>\n",
+    );
+    for r in rows {
+        let class = match r.verdict.as_str() {
+            "pass" => "pass",
+            "FAIL" => "fail",
+            _ => "info",
+        };
+        let tol = if r.tolerance.is_empty() {
+            "-".to_string()
+        } else {
+            sig(&r.tolerance, 3)
+        };
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td>{}</td><td class=\"num\">{}</td><td class=\"num\">{}</td>\
+             <td class=\"num\">{} ({})</td><td class=\"num\">{}</td><td class=\"{class}\">{}</td></tr>",
+            escape(&r.group),
+            escape(&r.condition),
+            escape(&r.quantity),
+            escape(&sig(&r.traced, 12)),
+            escape(&sig(&r.closed_form, 12)),
+            escape(&sig(&r.deviation, 3)),
+            escape(&r.deviation_kind),
+            escape(&tol),
+            escape(&r.verdict),
+        );
+    }
+    h.push_str("</table>\n</section>\n");
 }
 
 fn figures_section(h: &mut String, out: &Path, m: &Manifest) {

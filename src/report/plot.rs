@@ -1,7 +1,7 @@
 //! Plots (plotters, bitmap backend, encoded to PNG in memory): a case's profile — traced and
 //! closed-form curves per fidelity level with a log-scale deviation panel — its convergence
-//! against the number of reflected orders, Newton's colour strip, and the colour error against
-//! the number of spectral samples.
+//! against the number of reflected orders, Newton's colour strip, the colour error against
+//! the number of spectral samples, and the stability sweep's phase error against optical path.
 //!
 //! Text is drawn with DejaVu Sans shipped in `data/fonts/` (compiled in, so plots look the same
 //! on machines without system fonts; licence in `data/fonts/LICENSE`).
@@ -482,6 +482,150 @@ pub fn colour_error_png(series: &[(String, Vec<(usize, f64)>)]) -> Result<Vec<u8
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::LowerLeft)
+            .background_style(WHITE.mix(0.85))
+            .border_style(BLACK)
+            .label_font(("sans-serif", 13))
+            .draw()
+            .map_err(err)?;
+        Ok(())
+    })
+}
+
+/// Size of `stability_paths.png`.
+pub const STABILITY_PATHS_SIZE: (u32, u32) = (900, 560);
+
+/// `stability_paths.png`: the two-beam phase error against optical path, log–log, for phases
+/// formed from absolute binary32 paths, from absolute f64 paths, and fringe's traced paths
+/// differenced in metres; the issue's bound (dashed) and π (dotted, beyond it a fringe can be
+/// anywhere). Both axes are drawn in decades (log10 on linear axes, labelled 1e-n, so every
+/// decade gets a tick); exact zeros are drawn at the floor of the axis.
+pub fn stability_paths_png(points: &[crate::stability::PathPoint]) -> Result<Vec<u8>, String> {
+    use std::f64::consts::PI;
+    let bound = crate::stability::PATH_PHASE_TOLERANCE_RAD;
+    render_png(STABILITY_PATHS_SIZE, |root| {
+        let errs = || {
+            points
+                .iter()
+                .flat_map(|p| [p.fringe_rad, p.f64_absolute_rad, p.binary32_absolute_rad])
+        };
+        let ymax = errs().filter(|v| v.is_finite()).fold(PI, f64::max);
+        let ymin = errs()
+            .filter(|v| v.is_finite() && *v > 0.0)
+            .fold(ymax, f64::min)
+            .max(DEV_FLOOR * 1e-3);
+        // Decades of the axes.
+        let (y0, y1) = (ymin.log10().floor() - 0.5, ymax.log10().ceil() + 0.3);
+        let (x0, x1) = points
+            .iter()
+            .map(|p| p.path_m)
+            .filter(|x| x.is_finite() && *x > 0.0)
+            .fold((f64::INFINITY, 0.0f64), |(a, b), x| (a.min(x), b.max(x)));
+        let (x0, x1) = if x0 < x1 { (x0, x1) } else { (1e-9, 10.0) };
+        let (lx0, lx1) = (x0.log10() - 0.3, x1.log10() + 0.3);
+        let mut chart = ChartBuilder::on(root)
+            .caption(
+                format!(
+                    "Two-beam phase error vs optical path (λ = {:.0} nm, worst of {} path differences)",
+                    crate::stability::WAVELENGTH_M * 1e9,
+                    crate::stability::PATH_OFFSETS
+                ),
+                ("sans-serif", 18),
+            )
+            .margin(12)
+            .x_label_area_size(45)
+            .y_label_area_size(70)
+            .build_cartesian_2d(lx0..lx1, y0..y1)
+            .map_err(err)?;
+        let decade = |v: &f64| {
+            if (v - v.round()).abs() < 1e-6 {
+                format!("1e{}", v.round() as i32)
+            } else {
+                String::new()
+            }
+        };
+        chart
+            .configure_mesh()
+            .x_desc("optical path s of the nearer beam (m)")
+            .y_desc("|phase error| (rad)")
+            .x_labels(((lx1 - lx0).ceil() as usize + 1) * 2)
+            .y_labels(((y1 - y0).ceil() as usize + 1) * 2)
+            .x_label_formatter(&decade)
+            .y_label_formatter(&decade)
+            .label_style(("sans-serif", 13))
+            .light_line_style(WHITE.mix(0.0))
+            .draw()
+            .map_err(err)?;
+        let series = [
+            (
+                "binary32 paths, absolute phases",
+                RGBColor(210, 30, 40),
+                2,
+                points
+                    .iter()
+                    .map(|p| (p.path_m, p.binary32_absolute_rad))
+                    .collect::<Vec<_>>(),
+            ),
+            (
+                "f64 paths, absolute phases",
+                RGBColor(30, 90, 220),
+                2,
+                points
+                    .iter()
+                    .map(|p| (p.path_m, p.f64_absolute_rad))
+                    .collect(),
+            ),
+            (
+                "fringe: traced f64 paths, differenced in metres",
+                RGBColor(40, 160, 60),
+                3,
+                points.iter().map(|p| (p.path_m, p.fringe_rad)).collect(),
+            ),
+        ];
+        for (label, c, w, pts) in series {
+            let pts: Vec<(f64, f64)> = pts
+                .into_iter()
+                .filter(|(x, y)| x.is_finite() && *x > 0.0 && y.is_finite())
+                .map(|(x, y)| (x.log10(), y.max(ymin).log10()))
+                .collect();
+            chart
+                .draw_series(LineSeries::new(pts.clone(), c.stroke_width(w)))
+                .map_err(err)?
+                .label(label)
+                .legend(move |(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(w))
+                });
+            chart
+                .draw_series(pts.into_iter().map(move |q| Circle::new(q, 3, c.filled())))
+                .map_err(err)?;
+        }
+        let lb = bound.log10();
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(lx0, lb), (lx1, lb)],
+                8,
+                6,
+                BLACK.stroke_width(1),
+            ))
+            .map_err(err)?
+            .label(format!("bound {bound:.0e} rad (issue #6)"))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(1)));
+        let grey = RGBColor(120, 120, 120);
+        let lpi = PI.log10();
+        chart
+            .draw_series(DashedLineSeries::new(
+                vec![(lx0, lpi), (lx1, lpi)],
+                2,
+                4,
+                grey.stroke_width(1),
+            ))
+            .map_err(err)?
+            .label("π (beyond it a fringe can be anywhere)")
+            .legend(move |(x, y)| {
+                PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(1))
+            });
+        chart
+            .configure_series_labels()
+            .position(SeriesLabelPosition::UpperLeft)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 13))
