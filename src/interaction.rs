@@ -81,25 +81,22 @@ pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3, current: f6
     }
 }
 
-fn child(parent: &Ray, dir: DVec3, s: DVec3, jones: [Complex64; 2], index: f64, keep: bool) -> Ray {
-    let mut ray = parent.clone();
-    ray.dir = dir;
-    ray.x = s;
-    ray.y = dir.cross(s);
-    ray.jones = jones;
-    ray.index = index;
-    if !keep && ray.coherence_id != INCOHERENT {
-        ray.coherence_id = INCOHERENT;
-        ray.ledger
-            .entries
-            .push(LedgerEntry::CoherenceLost { surface: None });
-    }
-    ray
+/// The parent ray at the hit point, split into s and p, with the coefficients of `model`.
+struct Split {
+    d_i: DVec3,
+    /// The s unit vector (PHYSICS.md §1).
+    s: DVec3,
+    /// The parent's field components along s and p_i.
+    a_s: Complex64,
+    a_p: Complex64,
+    n1: f64,
+    n2: f64,
+    cos_theta_i: f64,
+    coefficients: FresnelCoefficients,
 }
 
-/// Split `ray` at `hit` into its reflected and refracted children using `model`.
-pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Children {
-    let mut parent = ray.clone();
+/// Advances `parent` to the hit point and splits its field.
+fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
     parent.advance_to(hit.point);
     let d_i = parent.dir;
     let cos_theta_i = d_i.dot(hit.normal).abs().min(1.0);
@@ -124,53 +121,100 @@ pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Child
             fresnel::paper_rules(n1, n2, cos_theta_i)
         }
     };
-    let c = coefficients;
-
-    // Step 3: the reflected child.
-    let d_r = fresnel::reflect(d_i, hit.normal);
-    let mut reflected = child(
-        &parent,
-        d_r,
+    Split {
+        d_i,
         s,
-        [c.r_s * a_s, c.r_p * a_p],
-        n1,
-        hit.coherence.reflected_keeps,
-    );
-    reflected.ledger.entries.push(LedgerEntry::Reflection {
-        surface: hit.surface,
-        phase_s: c.r_s.arg(),
-        phase_p: c.r_p.arg(),
-        tir: c.total_internal_reflection,
-    });
-
-    // Step 4: the refracted child, unless TIR or a mirror.
-    let refracted = match hit.optics {
-        SurfaceOptics::IdealMirror => None,
-        SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } => {
-            fresnel::refract(d_i, hit.normal, n1, n2).map(|d_t| {
-                let mut t = child(
-                    &parent,
-                    d_t,
-                    s,
-                    [c.t_s * a_s, c.t_p * a_p],
-                    n2,
-                    hit.coherence.refracted_keeps,
-                );
-                t.ledger.entries.push(LedgerEntry::Refraction {
-                    surface: hit.surface,
-                    phase_s: c.t_s.arg(),
-                    phase_p: c.t_p.arg(),
-                });
-                t
-            })
-        }
-    };
-    Children {
-        reflected,
-        refracted,
-        coefficients,
-        cos_theta_i,
+        a_s,
+        a_p,
         n1,
         n2,
+        cos_theta_i,
+        coefficients,
+    }
+}
+
+/// A child of the split parent: direction `dir`, frame (s, dir × s), Jones (c_s a_s, c_p a_p).
+fn child(
+    mut ray: Ray,
+    sp: &Split,
+    dir: DVec3,
+    c: [Complex64; 2],
+    index: f64,
+    keep: bool,
+    entry: LedgerEntry,
+) -> Ray {
+    ray.dir = dir;
+    ray.x = sp.s;
+    ray.y = dir.cross(sp.s);
+    ray.jones = [c[0] * sp.a_s, c[1] * sp.a_p];
+    ray.index = index;
+    if !keep && ray.coherence_id != INCOHERENT {
+        ray.coherence_id = INCOHERENT;
+        ray.ledger
+            .entries
+            .push(LedgerEntry::CoherenceLost { surface: None });
+    }
+    ray.ledger.entries.push(entry);
+    ray
+}
+
+/// Step 3: the reflected child.
+fn reflected(ray: Ray, sp: &Split, hit: &InterfaceHit) -> Ray {
+    let c = &sp.coefficients;
+    let entry = LedgerEntry::Reflection {
+        surface: hit.surface,
+        r_s: c.r_s,
+        r_p: c.r_p,
+        tir: c.total_internal_reflection,
+    };
+    let d_r = fresnel::reflect(sp.d_i, hit.normal);
+    let keep = hit.coherence.reflected_keeps;
+    child(ray, sp, d_r, [c.r_s, c.r_p], sp.n1, keep, entry)
+}
+
+/// Step 4: the refracted child, unless TIR or a mirror.
+fn refracted(ray: Ray, sp: &Split, hit: &InterfaceHit) -> Option<Ray> {
+    if matches!(hit.optics, SurfaceOptics::IdealMirror) {
+        return None;
+    }
+    let d_t = fresnel::refract(sp.d_i, hit.normal, sp.n1, sp.n2)?;
+    let c = &sp.coefficients;
+    let entry = LedgerEntry::Refraction {
+        surface: hit.surface,
+        t_s: c.t_s,
+        t_p: c.t_p,
+    };
+    let keep = hit.coherence.refracted_keeps;
+    Some(child(ray, sp, d_t, [c.t_s, c.t_p], sp.n2, keep, entry))
+}
+
+/// Split `ray` at `hit` into its reflected and refracted children using `model`.
+pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Children {
+    let mut parent = ray.clone();
+    let sp = split(&mut parent, hit, model);
+    Children {
+        refracted: refracted(parent.clone(), &sp, hit),
+        reflected: reflected(parent, &sp, hit),
+        coefficients: sp.coefficients,
+        cos_theta_i: sp.cos_theta_i,
+        n1: sp.n1,
+        n2: sp.n2,
+    }
+}
+
+/// The one child of `ray` at `hit` that a path follows (`reflect`: the reflected one, else the
+/// refracted one, `None` under TIR or at a mirror): the same ray [`interact`] returns, without
+/// building the other child.
+pub fn interact_along(
+    mut ray: Ray,
+    hit: &InterfaceHit,
+    model: CoefficientModel,
+    reflect: bool,
+) -> Option<Ray> {
+    let sp = split(&mut ray, hit, model);
+    if reflect {
+        Some(reflected(ray, &sp, hit))
+    } else {
+        refracted(ray, &sp, hit)
     }
 }

@@ -2,6 +2,7 @@
 //! interference in scenes of optically isotropic transparent objects.
 pub mod accumulate;
 pub mod analytic;
+pub mod beats;
 pub mod case;
 pub mod check;
 pub mod colour;

@@ -164,10 +164,20 @@ fn trace_planes(
     dir: DVec3,
     seq: &[Event],
 ) -> Result<Geometry, PathError> {
+    let with_first = |x| {
+        // The end point is pushed after the last event for point targets.
+        let mut v = Vec::with_capacity(seq.len() + 2);
+        v.push(x);
+        v
+    };
     let mut g = Geometry {
-        points: vec![origin],
-        dirs: vec![dir],
-        indices: vec![optics.ambient_index],
+        points: with_first(origin),
+        dirs: with_first(dir),
+        indices: {
+            let mut v = Vec::with_capacity(seq.len() + 1);
+            v.push(optics.ambient_index);
+            v
+        },
         denser_reflections: 0,
         has_tir: false,
         refraction_factor: 1.0,
@@ -316,6 +326,120 @@ impl LaunchModel {
     }
 }
 
+/// The launch direction of the exact path from a point source at `source` to the point
+/// `target` when every event plane of `seq` is parallel to the first (a plate, a film stack, a
+/// mirror parallel to a plate), or `None` when the planes are not parallel or the sequence
+/// cannot be followed in the plane of incidence (the general solver then decides).
+///
+/// All segments then lie in the plane of incidence through `source`, `target` and the common
+/// normal ν, and Snell's law keeps the invariant p = n_k sin θ_k (θ_k: angle of segment k to
+/// ν) the same on every segment, reflections included. Segment k of height h_k (its extent
+/// along ν, from the plane heights) in index n_k runs h_k tan θ_k = h_k p/√(n_k² − p²)
+/// sideways, so p solves the lateral-run equation
+///
+/// f(p) = Σ_k h_k p/√(n_k² − p²) − D = 0,  0 ≤ p < min n_k,
+///
+/// with D the lateral distance from source to target. f is increasing and convex, so Newton's
+/// method safeguarded by bisection on the bracket converges from any start. The segment
+/// indices depend only on the sequence, not on the launch angle.
+fn parallel_stack_launch(
+    scene: &Scene,
+    optics: &SceneOptics,
+    seq: &[Event],
+    source: DVec3,
+    target: DVec3,
+) -> Option<DVec3> {
+    let nu = scene.surfaces[seq.first()?.surface].plane.normal;
+    // Heights along ν of the source (k = 0), event plane k (1..=len) and the target.
+    let z = |k: usize| match k {
+        0 => source.dot(nu),
+        k if k <= seq.len() => scene.surfaces[seq[k - 1].surface].plane.point.dot(nu),
+        _ => target.dot(nu),
+    };
+    // Walk the segments: the direction along ν (it flips at reflections only) and the index
+    // (it changes at refractions only), exactly as `trace_planes` finds them for any launch;
+    // anything it would reject is left to the general solver and its error.
+    let n0 = optics.ambient_index;
+    let first_up = (z(1) - z(0)).signum();
+    let (mut up, mut n) = (first_up, n0);
+    // Total height per index (one entry per medium).
+    let mut runs: Vec<(f64, f64)> = Vec::with_capacity(4);
+    for k in 0..=seq.len() {
+        let dz = z(k + 1) - z(k);
+        if dz == 0.0 || dz.signum() != up {
+            return None;
+        }
+        match runs.iter_mut().find(|r| r.1 == n) {
+            Some(r) => r.0 += dz.abs(),
+            None => runs.push((dz.abs(), n)),
+        }
+        let Some(ev) = seq.get(k) else { break };
+        let normal = scene.surfaces[ev.surface].plane.normal;
+        if normal.cross(nu).length_squared() > 1e-30 {
+            return None;
+        }
+        let so = optics.surfaces[ev.surface]?;
+        let (n1, n2) = indices_for(so, normal, up * nu, n);
+        if n1 != n {
+            return None;
+        }
+        match (ev.kind, so) {
+            (EventKind::Reflect, _) => up = -up,
+            (EventKind::Refract, SurfaceOptics::IdealMirror) => return None,
+            (EventKind::Refract, _) => n = n2,
+        }
+    }
+    let along = (target - source).dot(nu) * nu;
+    let lateral = target - source - along;
+    let d = lateral.length();
+    let p = if d == 0.0 {
+        0.0
+    } else {
+        let p_max = runs.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
+        let height: f64 = runs.iter().map(|r| r.0).sum();
+        let f = |p: f64| -> (f64, f64) {
+            runs.iter().fold((-d, 0.0), |(f, df), &(h, n)| {
+                let c2 = (n - p) * (n + p);
+                (f + h * p / c2.sqrt(), df + h * n * n / (c2 * c2.sqrt()))
+            })
+        };
+        // Start where every segment had the lowest index (f ≤ 0 there).
+        let (mut lo, mut hi) = (0.0, p_max);
+        let mut p = p_max * d / d.hypot(height);
+        // Quadratic convergence: a few steps reach rounding level (a few ulps of p_max).
+        let ulps = 4.0 * f64::EPSILON * p_max;
+        for _ in 0..100 {
+            let (fp, dfp) = f(p);
+            if fp == 0.0 {
+                break;
+            }
+            if fp < 0.0 {
+                lo = p
+            } else {
+                hi = p
+            }
+            let newton = p - fp / dfp;
+            if (newton - p).abs() <= ulps {
+                p = newton;
+                break;
+            }
+            p = if newton > lo && newton < hi {
+                newton
+            } else {
+                0.5 * (lo + hi)
+            };
+            if hi - lo <= ulps {
+                break;
+            }
+        }
+        p
+    };
+    let sin0 = p / n0;
+    let cos0 = ((n0 - p) * (n0 + p)).sqrt() / n0;
+    let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
+    Some(sin0 * u + cos0 * first_up * nu)
+}
+
 /// Image-method initial guess: the target mirrored through every reflection, in reverse order.
 fn unfolded_target(scene: &Scene, seq: &[Event], p: DVec3) -> DVec3 {
     seq.iter().rev().fold(p, |x, ev| match ev.kind {
@@ -425,16 +549,40 @@ pub fn solve(
     // inside glass looking out at a shallow angle), steepen it toward the first event's
     // normal, halving the tangential part until the sequence can be traced.
     let mut guess_dir = guess_dir;
-    if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) = (seq.first(), emitter) {
+    // A point source and a point through parallel planes: Snell's invariant gives the launch
+    // direction directly (Newton then only confirms it).
+    let stack = match (emitter, target) {
+        (Emitter::Point { position }, Target::Point(p)) => {
+            parallel_stack_launch(scene, optics, seq, position, p)
+        }
+        _ => None,
+    };
+    if let Some(d) = stack {
+        guess_dir = d;
+    } else if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) =
+        (seq.first(), emitter)
+    {
         let n = scene.surfaces[first.surface].plane.normal;
         let (gn, gt) = (guess_dir.dot(n) * n, guess_dir - guess_dir.dot(n) * n);
-        for k in 0..64 {
-            let g = gn + 0.5f64.powi(k) * gt;
+        let mut shrink = 1.0;
+        for _ in 0..64 {
+            let g = gn + shrink * gt;
+            shrink *= 0.5;
             let m = LaunchModel::new(emitter, g, guess_origin);
             let (o, d) = m.launch([0.0, 0.0]);
-            if trace_planes(scene, optics, o, d, seq).is_ok() {
-                guess_dir = g;
-                break;
+            match trace_planes(scene, optics, o, d, seq) {
+                // Steepening keeps the side of the first plane the ray heads for: these
+                // failures cannot go away.
+                Err(
+                    e @ (PathError::Missed { event: 0 }
+                    | PathError::MediumMismatch { event: 0 }
+                    | PathError::OpaqueEvent { .. }),
+                ) => return Err(e),
+                Err(_) => continue,
+                Ok(_) => {
+                    guess_dir = g;
+                    break;
+                }
             }
         }
     }
@@ -472,7 +620,7 @@ pub fn solve(
         Some(j)
     };
 
-    let mut r = res(x).ok_or(PathError::Behind)?;
+    let mut r = residual(&g0, &target, frame).ok_or(PathError::Behind)?;
     let mut iterations = 0;
     while norm2(r) > tol && iterations < opts.max_iterations {
         iterations += 1;
@@ -506,7 +654,7 @@ pub fn solve(
             iterations,
         });
     }
-    let mut g = trace(x)?;
+    let mut g = if iterations == 0 { g0 } else { trace(x)? };
     let spreading = if opts.spreading {
         let j = jacobian(x).ok_or(PathError::NotConverged {
             landing_error_m: landing_error,

@@ -22,18 +22,20 @@ pub const INCOHERENT: u64 = 0;
 pub enum LedgerEntry {
     /// Propagation over `length_m` metres in a medium of index `index`: phase 2π n L/λ0.
     Path { index: f64, length_m: f64 },
-    /// A reflection at `surface`: arg r_s, arg r_p (radians) and whether it was TIR.
+    /// A reflection at `surface` with the applied coefficients r_s, r_p (their arguments are
+    /// the phase jumps) and whether it was TIR.
     Reflection {
         surface: usize,
-        phase_s: f64,
-        phase_p: f64,
+        r_s: Complex64,
+        r_p: Complex64,
         tir: bool,
     },
-    /// A refraction at `surface`: arg t_s, arg t_p (radians; 0 for lossless media).
+    /// A refraction at `surface` with the applied coefficients t_s, t_p (real and positive for
+    /// lossless media: no phase).
     Refraction {
         surface: usize,
-        phase_s: f64,
-        phase_p: f64,
+        t_s: Complex64,
+        t_p: Complex64,
     },
     /// A coherence change at `surface` (the child lost coherence, or the coherence length rule).
     CoherenceLost { surface: Option<usize> },
@@ -70,23 +72,21 @@ impl PhaseLedger {
                 ),
                 LedgerEntry::Reflection {
                     surface,
-                    phase_s,
-                    phase_p,
+                    r_s,
+                    r_p,
                     tir,
                 } => writeln!(
                     out,
                     "reflection at surface {surface}{}: arg r_s = {:.6} rad, arg r_p = {:.6} rad",
                     if *tir { " (TIR)" } else { "" },
-                    phase_s,
-                    phase_p
+                    r_s.arg(),
+                    r_p.arg()
                 ),
-                LedgerEntry::Refraction {
-                    surface,
-                    phase_s,
-                    phase_p,
-                } => writeln!(
+                LedgerEntry::Refraction { surface, t_s, t_p } => writeln!(
                     out,
-                    "refraction at surface {surface}: arg t_s = {phase_s:.6} rad, arg t_p = {phase_p:.6} rad"
+                    "refraction at surface {surface}: arg t_s = {:.6} rad, arg t_p = {:.6} rad",
+                    t_s.arg(),
+                    t_p.arg()
                 ),
                 LedgerEntry::CoherenceLost { surface } => {
                     writeln!(out, "coherence lost (surface {surface:?})")

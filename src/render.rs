@@ -23,6 +23,7 @@
 //! Rows run in parallel (rayon); the result does not depend on the thread count.
 
 use crate::accumulate::Accumulator;
+use crate::beats::{Beats, SpectralContribution};
 use crate::case::build::{self, Built, GridGeometry, Overrides};
 use crate::case::load::Case;
 use crate::case::spec::{Observer, Probe};
@@ -30,7 +31,6 @@ use crate::colour::SpectralIntegrator;
 use crate::fidelity::Fidelity;
 use crate::material::Dispersion;
 use crate::path::Target;
-use crate::ray::Field3;
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::{self, Arrival, Plan, TraceSettings};
 use glam::DVec3;
@@ -233,24 +233,27 @@ pub fn arrivals_at(
     observer: &Observer,
     settings: &TraceSettings,
 ) -> Vec<Arrival> {
-    let mut arr = trace::arrivals(scene, optics, plan, &Target::Point(point), settings).0;
+    recorded_arrivals(scene, optics, plan, point, observer, settings, true)
+}
+
+/// [`arrivals_at`], with the paper's-rules rays only when `paper_rules`.
+fn recorded_arrivals(
+    scene: &Scene,
+    optics: &SceneOptics,
+    plan: &Plan,
+    point: DVec3,
+    observer: &Observer,
+    settings: &TraceSettings,
+    paper_rules: bool,
+) -> Vec<Arrival> {
+    let target = Target::Point(point);
+    let mut arr = trace::arrivals_with(scene, optics, plan, &target, settings, paper_rules).0;
     arr.retain(|a| build::records(observer, a.vector.dir));
     arr
 }
 
-/// A contribution with its phase split into a λ-scaled path part and a λ-independent part.
-#[derive(Clone, Copy, Debug)]
-struct Prepared {
-    coherence_id: u64,
-    /// Optical path minus the pixel's reference optical path (m).
-    delta_s_m: f64,
-    /// Phase that does not scale with 1/λ (cycles): π jumps.
-    extra_cycles: f64,
-    field: Field3,
-}
-
 /// The contributions of `arr` under `shading`, phases split for re-evaluation at any λ.
-fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<Prepared>) {
+fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<SpectralContribution>) {
     out.clear();
     let Some(first) = arr.first() else { return };
     let reference_m = first.vector.optical_path_m;
@@ -259,12 +262,12 @@ fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<Prepared>) {
             for a in arr {
                 let c = trace::contribution_from(a, level, reference_m);
                 let ray = if level == Fidelity::PaperRules {
-                    &a.paper
+                    a.paper.as_ref().expect(trace::PAPER_MISSING)
                 } else {
                     &a.vector
                 };
                 let delta_s_m = ray.optical_path_m - reference_m;
-                out.push(Prepared {
+                out.push(SpectralContribution {
                     coherence_id: c.coherence_id,
                     delta_s_m,
                     extra_cycles: c.phase_cycles - delta_s_m / ray.wavelength_m,
@@ -285,7 +288,7 @@ fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<Prepared>) {
                     power += arr[k].vector.intensity();
                     k += 1;
                 }
-                out.push(Prepared {
+                out.push(SpectralContribution {
                     coherence_id: a.vector.coherence_id,
                     delta_s_m: a.vector.optical_path_m - reference_m,
                     extra_cycles: 0.5 * a.path.denser_reflections as f64,
@@ -300,37 +303,31 @@ fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<Prepared>) {
     }
 }
 
-/// Intensity of prepared contributions at vacuum wavelength `lambda_m`.
-fn evaluate(prepared: &[Prepared], lambda_m: f64, acc: &mut Accumulator) -> f64 {
-    acc.clear();
-    for p in prepared {
-        acc.add_parts(
-            p.coherence_id,
-            p.delta_s_m / lambda_m + p.extra_cycles,
-            &p.field,
-        );
-    }
-    acc.intensity()
-}
-
 /// Everything a pixel needs, shared by all threads.
 struct Context<'a> {
     built: &'a Built,
     settings: &'a TraceSettings,
     /// (λ, weights [X, Y, Z] or [0, w, 0]) per sample.
     samples: Vec<(f64, [f64; 3])>,
+    /// The same, as two lists.
+    lambdas: Vec<f64>,
+    weights: Vec<[f64; 3]>,
     /// Scene optics and plan per sample (dispersive), or one entry (the middle sample).
     optics: Vec<SceneOptics>,
     plans: Vec<Plan>,
     dispersive: bool,
     shadings: &'a [Shading],
+    /// Whether some shading needs the rays under the paper's rules.
+    paper_rules: bool,
 }
 
 /// Per-thread scratch space.
 #[derive(Default)]
 struct Scratch {
     acc: Accumulator,
-    prepared: Vec<Vec<Prepared>>,
+    prepared: Vec<SpectralContribution>,
+    /// One per shading.
+    beats: Vec<Beats>,
 }
 
 impl Context<'_> {
@@ -344,26 +341,26 @@ impl Context<'_> {
         out: &mut [[f64; 3]],
     ) -> usize {
         let scene = &self.built.scene;
-        s.prepared.resize_with(self.shadings.len(), Vec::new);
+        s.beats.resize_with(self.shadings.len(), Beats::default);
         if !self.dispersive {
             let optics = &self.optics[0];
-            let arr = arrivals_at(
+            let arr = recorded_arrivals(
                 scene,
                 optics,
                 &self.plans[0],
                 point,
                 observer,
                 self.settings,
+                self.paper_rules,
             );
             for (k, sh) in self.shadings.iter().enumerate() {
-                prepare(&arr, *sh, &mut s.prepared[k]);
+                prepare(&arr, *sh, &mut s.prepared);
+                s.beats[k].set(&s.prepared);
             }
-            for &(lambda, w) in &self.samples {
-                for (prepared, sum) in s.prepared.iter().zip(out.iter_mut()) {
-                    let i = evaluate(prepared, lambda, &mut s.acc);
-                    for c in 0..3 {
-                        sum[c] += w[c] * i;
-                    }
+            for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
+                let w = beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc);
+                for c in 0..3 {
+                    sum[c] += w[c];
                 }
             }
             arr.len()
@@ -371,18 +368,20 @@ impl Context<'_> {
             let mut paths = 0;
             for (j, &(lambda, w)) in self.samples.iter().enumerate() {
                 let optics = &self.optics[j];
-                let arr = arrivals_at(
+                let arr = recorded_arrivals(
                     scene,
                     optics,
                     &self.plans[j],
                     point,
                     observer,
                     self.settings,
+                    self.paper_rules,
                 );
                 paths += arr.len();
                 for (k, sh) in self.shadings.iter().enumerate() {
-                    prepare(&arr, *sh, &mut s.prepared[k]);
-                    let i = evaluate(&s.prepared[k], lambda, &mut s.acc);
+                    prepare(&arr, *sh, &mut s.prepared);
+                    s.beats[k].set(&s.prepared);
+                    let i = s.beats[k].intensity(lambda, &mut s.acc);
                     for c in 0..3 {
                         out[k][c] += w[c] * i;
                     }
@@ -450,11 +449,14 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
     let ctx = Context {
         built: &built,
         settings: &settings,
+        lambdas: samples.iter().map(|s| s.0).collect(),
+        weights: samples.iter().map(|s| s.1).collect(),
         samples,
         optics,
         plans,
         dispersive,
         shadings: &req.shadings,
+        paper_rules: req.shadings.contains(&Shading::Level(Fidelity::PaperRules)),
     };
     let g = req.screen.geometry;
     let bar = progress_bar(g.rows as u64, req.progress);

@@ -4,7 +4,7 @@
 
 use crate::accumulate::{Accumulator, Contribution};
 use crate::fidelity::{Fidelity, SceneNeeds};
-use crate::interaction::{CoefficientModel, InterfaceHit, interact};
+use crate::interaction::{CoefficientModel, InterfaceHit, interact_along};
 use crate::path::{
     self, EnumerationLimits, EventKind, PathError, Sequence, SolveOptions, SolvedPath, Target,
 };
@@ -13,6 +13,7 @@ use crate::scene::{Scene, SceneOptics};
 use crate::source::Channel;
 use glam::DVec3;
 use num_complex::Complex64;
+use std::sync::Arc;
 
 /// Tracing settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -74,11 +75,13 @@ pub fn plan(
 pub struct Arrival {
     pub source: usize,
     pub channel: Channel,
-    pub path: SolvedPath,
+    /// The solved path (shared by the source's channels along it).
+    pub path: Arc<SolvedPath>,
     /// The ray propagated with complex Fresnel coefficients.
     pub vector: Ray,
-    /// The ray propagated with the paper's rules.
-    pub paper: Ray,
+    /// The ray propagated with the paper's rules (`None` when traced without them, see
+    /// [`arrivals_with`]).
+    pub paper: Option<Ray>,
 }
 
 /// A sequence that did not give a path, and why (for reports).
@@ -110,6 +113,8 @@ pub fn propagate(
     );
     ray.coherence_id = channel.coherence_id;
     ray.coherence_length_m = coherence_length_m;
+    // Per event a path, an interaction and perhaps a coherence loss; then the last path.
+    ray.ledger.entries.reserve(3 * path.sequence.len() + 2);
     for (k, ev) in path.sequence.iter().enumerate() {
         let surf = &scene.surfaces[ev.surface];
         let hit = InterfaceHit {
@@ -120,13 +125,8 @@ pub fn propagate(
                 .expect("solved paths only meet non-opaque surfaces"),
             coherence: surf.coherence(),
         };
-        let children = interact(&ray, &hit, model);
-        ray = match ev.kind {
-            EventKind::Reflect => children.reflected,
-            EventKind::Refract => children
-                .refracted
-                .expect("solved paths only refract where a refracted ray exists"),
-        };
+        ray = interact_along(ray, &hit, model, ev.kind == EventKind::Reflect)
+            .expect("solved paths only refract where a refracted ray exists");
     }
     match target {
         Target::Point(p) => ray.advance_to(*p),
@@ -159,12 +159,26 @@ pub fn arrivals(
     target: &Target,
     settings: &TraceSettings,
 ) -> (Vec<Arrival>, Vec<Failure>) {
+    arrivals_with(scene, optics, plan, target, settings, true)
+}
+
+/// [`arrivals`], propagating the rays under the paper's rules too only when `paper_rules`
+/// (a render that shows no `paper_rules` picture skips that half of the work).
+pub fn arrivals_with(
+    scene: &Scene,
+    optics: &SceneOptics,
+    plan: &Plan,
+    target: &Target,
+    settings: &TraceSettings,
+    paper_rules: bool,
+) -> (Vec<Arrival>, Vec<Failure>) {
     let mut found = Vec::new();
     let mut failed = Vec::new();
     for (si, src) in scene.sources.iter().enumerate() {
         for seq in &plan.sequences[si] {
             match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
                 Ok(p) => {
+                    let p = Arc::new(p);
                     for ch in src.channels() {
                         let v = propagate(
                             scene,
@@ -175,19 +189,21 @@ pub fn arrivals(
                             target,
                             CoefficientModel::Vector,
                         );
-                        let r = propagate(
-                            scene,
-                            optics,
-                            &ch,
-                            src.coherence_length_m,
-                            &p,
-                            target,
-                            CoefficientModel::PaperRules,
-                        );
+                        let r = paper_rules.then(|| {
+                            propagate(
+                                scene,
+                                optics,
+                                &ch,
+                                src.coherence_length_m,
+                                &p,
+                                target,
+                                CoefficientModel::PaperRules,
+                            )
+                        });
                         found.push(Arrival {
                             source: si,
                             channel: ch,
-                            path: p.clone(),
+                            path: Arc::clone(&p),
                             vector: v,
                             paper: r,
                         });
@@ -203,6 +219,10 @@ pub fn arrivals(
     }
     (found, failed)
 }
+
+/// The panic message of asking for `paper_rules` of an arrival traced without them.
+pub const PAPER_MISSING: &str =
+    "paper_rules asked of an arrival traced without the paper's rules (trace::arrivals_with)";
 
 /// The accumulation-core contribution of an arrival at a rung of the ladder, with its path
 /// phase measured from the optical path `reference_m` (m): path differences are formed in
@@ -226,11 +246,14 @@ pub fn contribution_from(a: &Arrival, level: Fidelity, reference_m: f64) -> Cont
         },
         Fidelity::Scalar => scalar(0.0),
         Fidelity::ScalarJump => scalar(0.5 * a.path.denser_reflections as f64),
-        Fidelity::PaperRules => Contribution {
-            coherence_id: a.paper.coherence_id,
-            phase_cycles: cycles(&a.paper),
-            field: a.paper.field(),
-        },
+        Fidelity::PaperRules => {
+            let paper = a.paper.as_ref().expect(PAPER_MISSING);
+            Contribution {
+                coherence_id: paper.coherence_id,
+                phase_cycles: cycles(paper),
+                field: paper.field(),
+            }
+        }
         Fidelity::Vector => Contribution {
             coherence_id: v.coherence_id,
             phase_cycles: cycles(v),

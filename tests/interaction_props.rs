@@ -11,7 +11,9 @@ mod common;
 
 use common::*;
 use fringe::fresnel::s_direction;
-use fringe::interaction::{CoefficientModel, InterfaceHit, SurfaceOptics, interact};
+use fringe::interaction::{
+    CoefficientModel, InterfaceHit, SurfaceOptics, interact, interact_along,
+};
 use fringe::material::CoherenceRules;
 use fringe::ray::{INCOHERENT, LedgerEntry, PhaseLedger, Ray};
 use glam::DVec3;
@@ -191,6 +193,12 @@ proptest! {
             }
         }
         prop_assert_eq!(ch.reflected.index, n1);
+        // The single-child form the path tracer uses builds exactly the same rays (both models).
+        for model in [CoefficientModel::Vector, CoefficientModel::PaperRules] {
+            let both = interact(&ray, &hit, model);
+            prop_assert_eq!(interact_along(ray.clone(), &hit, model, true), Some(both.reflected));
+            prop_assert_eq!(interact_along(ray.clone(), &hit, model, false), both.refracted);
+        }
     }
 
     /// At normal incidence the reflected 3D field is (n1 − n2)/(n1 + n2)·E and the transmitted one

@@ -251,6 +251,8 @@ proptest! {
                 Err(e) => return Err(TestCaseError::fail(format!("order {k}: solver failed: {e} (plate {p:?}, S {s:?}, P {target:?})"))),
             };
             check_landing(&p, s, target, &seq, &sol, scale)?;
+            // Parallel planes: the solver's 1-D Snell start is already the path.
+            prop_assert_eq!(sol.iterations, 0, "order {}: Newton iterations after the 1-D start", k);
             let mut layers = vec![(p.n_a, hs + hp)];
             if k > 0 {
                 layers.push((p.n_p, 2.0 * k as f64 * p.d));

@@ -1,0 +1,188 @@
+//! One screen point's rays at many wavelengths: the accumulation core (eqs. 5–6, PHYSICS.md §3)
+//! expanded into beat terms, for spectral renders.
+//!
+//! A ray's phase splits into a part that scales with 1/λ and one that does not:
+//! φ_k(λ) = Δs_k/λ + e_k (cycles), with Δs_k its optical path minus the point's reference
+//! optical path (m) and e_k the λ-independent phase (the half-cycle jumps of `scalar_jump`). The
+//! fields E_k do not depend on λ when no medium is dispersive. For one coherence group the
+//! identity
+//!
+//! |Σ_k E_k e^{2πiφ_k}|² = Σ_k |E_k|² + Σ_{k<l} Re[2 (E_k·E_l*) e^{2πi(φ_k − φ_l)}],
+//!
+//! with E_k·E_l* = Σ_c E_k,c conj(E_l,c), rewrites eq. 5 as a constant plus one *beat term* per
+//! pair, of path difference Δs_k − Δs_l (formed in metres before dividing by λ, as everywhere in
+//! fringe) and extra phase e_k − e_l; incoherent rays (id 0) add |E_k|² to the constant (eq. 6).
+//! Terms with the same path difference and extra phase merge exactly (their complex amplitudes
+//! add): the s and p channels of an unpolarized source along the same two paths, or several
+//! sources' channels, leave **one** term for a two-beam point, so each wavelength costs one
+//! phasor instead of one per ray. With more terms than rays (many beams in one group, e.g. an
+//! Airy plate) the pair form would cost more, and [`Beats::intensity`] uses the accumulator.
+
+use crate::accumulate::{Accumulator, phasor_from_cycles, phasors_from_cycles};
+use crate::ray::{Field3, INCOHERENT};
+use num_complex::Complex64;
+
+/// A ray at a screen point with its phase split for evaluation at any wavelength.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SpectralContribution {
+    /// Coherence id; 0 adds intensity only.
+    pub coherence_id: u64,
+    /// Optical path minus the point's reference optical path (m).
+    pub delta_s_m: f64,
+    /// Phase that does not scale with 1/λ (cycles).
+    pub extra_cycles: f64,
+    /// Complex 3D field amplitude (λ-independent).
+    pub field: Field3,
+}
+
+/// One beat term: Re[amplitude · e^{2πi(Δs/λ + e)}].
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct Beat {
+    delta_s_m: f64,
+    extra_cycles: f64,
+    amplitude: Complex64,
+}
+
+/// The rays of one point, reduced to beat terms when that is cheaper (module docs).
+#[derive(Clone, Debug, Default)]
+pub struct Beats {
+    rays: Vec<SpectralContribution>,
+    /// Σ |E_k|² over every ray.
+    constant: f64,
+    terms: Vec<Beat>,
+    /// Whether `constant` + `terms` represent the rays (else the accumulator is used).
+    paired: bool,
+    /// Scratch of [`Beats::weighted_sum`]: one phase and phasor per wavelength.
+    cycles: Vec<f64>,
+    phasors: Vec<Complex64>,
+}
+
+fn dot_conj(a: &Field3, b: &Field3) -> Complex64 {
+    a[0] * b[0].conj() + a[1] * b[1].conj() + a[2] * b[2].conj()
+}
+
+impl Beats {
+    /// Replace the rays (allocation is reused across points).
+    pub fn set(&mut self, rays: &[SpectralContribution]) {
+        self.rays.clear();
+        self.rays.extend_from_slice(rays);
+        self.terms.clear();
+        self.constant = rays
+            .iter()
+            .map(|r| r.field.iter().map(|c| c.norm_sqr()).sum::<f64>())
+            .sum();
+        // Pairs in the same group, counted before any is built.
+        let mut pairs = 0;
+        for (k, a) in rays.iter().enumerate() {
+            if a.coherence_id != INCOHERENT {
+                pairs += rays[..k]
+                    .iter()
+                    .filter(|b| b.coherence_id == a.coherence_id)
+                    .count();
+            }
+        }
+        self.paired = pairs <= rays.len();
+        if !self.paired {
+            return;
+        }
+        for (k, a) in rays.iter().enumerate() {
+            if a.coherence_id == INCOHERENT {
+                continue;
+            }
+            for b in rays[..k]
+                .iter()
+                .filter(|b| b.coherence_id == a.coherence_id)
+            {
+                let beat = Beat {
+                    delta_s_m: a.delta_s_m - b.delta_s_m,
+                    extra_cycles: a.extra_cycles - b.extra_cycles,
+                    amplitude: 2.0 * dot_conj(&a.field, &b.field),
+                };
+                match self
+                    .terms
+                    .iter_mut()
+                    .find(|t| t.delta_s_m == beat.delta_s_m && t.extra_cycles == beat.extra_cycles)
+                {
+                    Some(t) => t.amplitude += beat.amplitude,
+                    None => self.terms.push(beat),
+                }
+            }
+        }
+    }
+
+    /// Number of beat terms, or `None` when the rays are evaluated by the accumulator.
+    pub fn term_count(&self) -> Option<usize> {
+        self.paired.then_some(self.terms.len())
+    }
+
+    /// Intensity at vacuum wavelength `lambda_m` (eqs. 5–6); `acc` is scratch space for the
+    /// unpaired case.
+    pub fn intensity(&self, lambda_m: f64, acc: &mut Accumulator) -> f64 {
+        if self.paired {
+            let mut i = self.constant;
+            for t in &self.terms {
+                let p = phasor_from_cycles(t.delta_s_m / lambda_m + t.extra_cycles);
+                i += t.amplitude.re * p.re - t.amplitude.im * p.im;
+            }
+            i
+        } else {
+            acc.clear();
+            for r in &self.rays {
+                acc.add_parts(
+                    r.coherence_id,
+                    r.delta_s_m / lambda_m + r.extra_cycles,
+                    &r.field,
+                );
+            }
+            acc.intensity()
+        }
+    }
+
+    /// Σ_i w_i I(λ_i) for each of three weight channels (e.g. the CIE weights of X, Y, Z) over
+    /// the wavelengths `lambdas_m`: the same sum as adding `w_i ·` [`Beats::intensity`]`(λ_i)`,
+    /// with the phasors of each beat term computed as one batch. In the paired form
+    /// Σ_i w_i I_i = C Σ_i w_i + Σ_t (Re b_t Σ_i w_i cos 2πφ_ti − Im b_t Σ_i w_i sin 2πφ_ti).
+    pub fn weighted_sum(
+        &mut self,
+        lambdas_m: &[f64],
+        weights: &[[f64; 3]],
+        acc: &mut Accumulator,
+    ) -> [f64; 3] {
+        assert_eq!(lambdas_m.len(), weights.len(), "one weight per wavelength");
+        let mut out = [0.0; 3];
+        if !self.paired {
+            for (&l, w) in lambdas_m.iter().zip(weights) {
+                let i = self.intensity(l, acc);
+                for c in 0..3 {
+                    out[c] += w[c] * i;
+                }
+            }
+            return out;
+        }
+        for w in weights {
+            for c in 0..3 {
+                out[c] += w[c] * self.constant;
+            }
+        }
+        self.cycles.resize(lambdas_m.len(), 0.0);
+        self.phasors
+            .resize(lambdas_m.len(), Complex64::new(0.0, 0.0));
+        for t in &self.terms {
+            for (c, &l) in self.cycles.iter_mut().zip(lambdas_m) {
+                *c = t.delta_s_m / l + t.extra_cycles;
+            }
+            phasors_from_cycles(&self.cycles, &mut self.phasors);
+            let (mut re, mut im) = ([0.0; 3], [0.0; 3]);
+            for (p, w) in self.phasors.iter().zip(weights) {
+                for c in 0..3 {
+                    re[c] += w[c] * p.re;
+                    im[c] += w[c] * p.im;
+                }
+            }
+            for c in 0..3 {
+                out[c] += t.amplitude.re * re[c] - t.amplitude.im * im[c];
+            }
+        }
+        out
+    }
+}

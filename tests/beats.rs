@@ -1,0 +1,178 @@
+//! Beat terms (`beats`): a point's rays evaluated at many wavelengths through the pair identity
+//! |Σ E_k e^{iφ_k}|² = Σ|E_k|² + Σ_{k<l} 2 Re[(E_k·E_l*) e^{i(φ_k − φ_l)}] must give the
+//! accumulation core's intensity (eqs. 5–6, the reference here: `Accumulator`, tested on its own
+//! in tests/accumulate.rs) at every wavelength, merged or not, and the weighted spectral sum
+//! must equal Σ_i w_i I(λ_i) summed term by term.
+
+use fringe::accumulate::Accumulator;
+use fringe::beats::{Beats, SpectralContribution};
+use fringe::ray::Field3;
+use num_complex::Complex64;
+use proptest::prelude::*;
+
+fn field() -> impl Strategy<Value = Field3> {
+    proptest::array::uniform6(-1.0..1.0f64).prop_map(|a| {
+        [
+            Complex64::new(a[0], a[1]),
+            Complex64::new(a[2], a[3]),
+            Complex64::new(a[4], a[5]),
+        ]
+    })
+}
+
+fn ray() -> impl Strategy<Value = SpectralContribution> {
+    (
+        0u64..4,
+        -2e-5..2e-5f64,
+        prop_oneof![Just(0.0), Just(0.5), -1.0..1.0f64],
+        field(),
+    )
+        .prop_map(
+            |(coherence_id, delta_s_m, extra_cycles, field)| SpectralContribution {
+                coherence_id,
+                delta_s_m,
+                extra_cycles,
+                field,
+            },
+        )
+}
+
+/// The accumulation core's intensity of `rays` at `lambda`.
+fn core(rays: &[SpectralContribution], lambda: f64) -> f64 {
+    let mut acc = Accumulator::new();
+    for r in rays {
+        acc.add_parts(
+            r.coherence_id,
+            r.delta_s_m / lambda + r.extra_cycles,
+            &r.field,
+        );
+    }
+    acc.intensity()
+}
+
+fn power(rays: &[SpectralContribution]) -> f64 {
+    rays.iter()
+        .map(|r| r.field.iter().map(|c| c.norm_sqr()).sum::<f64>())
+        .sum()
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(512))]
+
+    /// Any set of rays (ids 0–3, 0 incoherent), any wavelength: the same intensity as the core,
+    /// to rounding (relative to Σ|E_k|, the scale of every cross term).
+    #[test]
+    fn beats_equal_the_accumulation_core(
+        rays in proptest::collection::vec(ray(), 0..9),
+        lambda in 380e-9..780e-9f64,
+    ) {
+        let mut beats = Beats::default();
+        beats.set(&rays);
+        let mut acc = Accumulator::new();
+        let got = beats.intensity(lambda, &mut acc);
+        let want = core(&rays, lambda);
+        let scale: f64 = rays.iter().map(|r| r.field.iter().map(|c| c.norm()).sum::<f64>()).sum::<f64>().powi(2);
+        let tol = 1e-13 * scale.max(1e-300);
+        prop_assert!((got - want).abs() <= tol, "beats {got:e}, core {want:e}, tol {tol:e}, terms {:?}", beats.term_count());
+    }
+
+    /// Σ_i w_i I(λ_i) on a wavelength grid equals the sum of the core's intensities.
+    #[test]
+    fn weighted_sum_equals_sum_of_intensities(
+        rays in proptest::collection::vec(ray(), 0..7),
+        weights in proptest::collection::vec(proptest::array::uniform3(0.0..2.0f64), 1..40),
+    ) {
+        let lambdas: Vec<f64> = (0..weights.len()).map(|i| 380e-9 + 5e-9 * i as f64).collect();
+        let mut beats = Beats::default();
+        beats.set(&rays);
+        let mut acc = Accumulator::new();
+        let got = beats.weighted_sum(&lambdas, &weights, &mut acc);
+        let scale: f64 = rays.iter().map(|r| r.field.iter().map(|c| c.norm()).sum::<f64>()).sum::<f64>().powi(2);
+        for c in 0..3 {
+            let want: f64 = lambdas.iter().zip(&weights).map(|(&l, w)| w[c] * core(&rays, l)).sum();
+            let wsum: f64 = weights.iter().map(|w| w[c]).sum();
+            let tol = 1e-13 * scale.max(1e-300) * wsum.max(1.0);
+            prop_assert!((got[c] - want).abs() <= tol, "channel {c}: {:e} vs {want:e}", got[c]);
+        }
+    }
+}
+
+/// An unpolarized source's two channels (ids 1 and 2) along the same two paths: two pairs with
+/// the same path difference merge into one beat term, and the intensity is the two-beam
+/// formula I1 + I2 + 2 Re[(E1a·E2a* + E1b·E2b*) e^{2πiΔs/λ}] evaluated here by hand.
+#[test]
+fn two_channels_on_two_paths_make_one_beat() {
+    let c = |re: f64, im: f64| Complex64::new(re, im);
+    let e1a = [c(0.2, 0.0), c(0.0, 0.0), c(0.0, 0.0)];
+    let e1b = [c(0.0, 0.0), c(0.1, 0.05), c(0.0, 0.0)];
+    let e2a = [c(-0.15, 0.0), c(0.0, 0.0), c(0.0, 0.0)];
+    let e2b = [c(0.0, 0.0), c(0.08, -0.02), c(0.0, 0.0)];
+    let ds = 1.234e-6;
+    let rays = [
+        SpectralContribution {
+            coherence_id: 1,
+            delta_s_m: 0.0,
+            extra_cycles: 0.0,
+            field: e1a,
+        },
+        SpectralContribution {
+            coherence_id: 2,
+            delta_s_m: 0.0,
+            extra_cycles: 0.0,
+            field: e1b,
+        },
+        SpectralContribution {
+            coherence_id: 1,
+            delta_s_m: ds,
+            extra_cycles: 0.0,
+            field: e2a,
+        },
+        SpectralContribution {
+            coherence_id: 2,
+            delta_s_m: ds,
+            extra_cycles: 0.0,
+            field: e2b,
+        },
+    ];
+    let mut beats = Beats::default();
+    beats.set(&rays);
+    assert_eq!(
+        beats.term_count(),
+        Some(1),
+        "one beat term for two channels on two paths"
+    );
+    let lambda = 550e-9;
+    let phi = std::f64::consts::TAU * ds / lambda;
+    // E_k(path 2)·E_k(path 1)* for each channel, summed; path 2 is the later one (+Δs).
+    let cross = e2a[0] * e1a[0].conj() + e2b[1] * e1b[1].conj();
+    let by_hand = power(&rays) + 2.0 * (cross * Complex64::from_polar(1.0, phi)).re;
+    let got = beats.intensity(lambda, &mut Accumulator::new());
+    assert!(
+        (got - by_hand).abs() < 1e-15,
+        "beats {got:e}, by hand {by_hand:e}"
+    );
+}
+
+/// Many beams in one group (an Airy plate): more pairs than rays, so the accumulator is used.
+#[test]
+fn many_beams_in_one_group_use_the_accumulator() {
+    let rays: Vec<SpectralContribution> = (0..6)
+        .map(|k| SpectralContribution {
+            coherence_id: 1,
+            delta_s_m: k as f64 * 1e-6,
+            extra_cycles: 0.0,
+            field: [
+                Complex64::new(0.5f64.powi(k), 0.0),
+                Complex64::default(),
+                Complex64::default(),
+            ],
+        })
+        .collect();
+    let mut beats = Beats::default();
+    beats.set(&rays);
+    assert_eq!(beats.term_count(), None);
+    // Geometric series at λ = 1 µm: every phase is a whole cycle, so |Σ 0.5^k|² = (2(1 − 2^-6))².
+    let got = beats.intensity(1e-6, &mut Accumulator::new());
+    let want = (2.0 * (1.0 - 0.5f64.powi(6))).powi(2);
+    assert!((got - want).abs() < 1e-14, "{got} vs {want}");
+}
