@@ -362,16 +362,21 @@ fn parallel_stack_launch(
     let n0 = optics.ambient_index;
     let first_up = (z(1) - z(0)).signum();
     let (mut up, mut n) = (first_up, n0);
-    // Total height per index (one entry per medium).
-    let mut runs: Vec<(f64, f64)> = Vec::with_capacity(4);
+    // Total height per index (one entry per medium; more media than this is left to Newton).
+    let mut runs = [(0.0, 0.0); 4];
+    let mut media = 0;
     for k in 0..=seq.len() {
         let dz = z(k + 1) - z(k);
         if dz == 0.0 || dz.signum() != up {
             return None;
         }
-        match runs.iter_mut().find(|r| r.1 == n) {
+        match runs[..media].iter_mut().find(|r| r.1 == n) {
             Some(r) => r.0 += dz.abs(),
-            None => runs.push((dz.abs(), n)),
+            None if media < 4 => {
+                runs[media] = (dz.abs(), n);
+                media += 1;
+            }
+            None => return None,
         }
         let Some(ev) = seq.get(k) else { break };
         let normal = scene.surfaces[ev.surface].plane.normal;
@@ -389,6 +394,7 @@ fn parallel_stack_launch(
             (EventKind::Refract, _) => n = n2,
         }
     }
+    let runs = &runs[..media];
     let along = (target - source).dot(nu) * nu;
     let lateral = target - source - along;
     let d = lateral.length();

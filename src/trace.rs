@@ -159,11 +159,22 @@ pub fn arrivals(
     target: &Target,
     settings: &TraceSettings,
 ) -> (Vec<Arrival>, Vec<Failure>) {
-    arrivals_with(scene, optics, plan, target, settings, true)
+    let mut failed = Vec::new();
+    let found = arrivals_with(
+        scene,
+        optics,
+        plan,
+        target,
+        settings,
+        true,
+        Some(&mut failed),
+    );
+    (found, failed)
 }
 
-/// [`arrivals`], propagating the rays under the paper's rules too only when `paper_rules`
-/// (a render that shows no `paper_rules` picture skips that half of the work).
+/// Every ray reaching `target` ([`arrivals`]), propagated under the paper's rules too only
+/// when `paper_rules` (a render that shows no `paper_rules` picture skips that half of the
+/// work), with the failed sequences pushed to `failed` when given.
 pub fn arrivals_with(
     scene: &Scene,
     optics: &SceneOptics,
@@ -171,53 +182,39 @@ pub fn arrivals_with(
     target: &Target,
     settings: &TraceSettings,
     paper_rules: bool,
-) -> (Vec<Arrival>, Vec<Failure>) {
+    mut failed: Option<&mut Vec<Failure>>,
+) -> Vec<Arrival> {
     let mut found = Vec::new();
-    let mut failed = Vec::new();
     for (si, src) in scene.sources.iter().enumerate() {
+        let channels = src.channels();
         for seq in &plan.sequences[si] {
-            match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
-                Ok(p) => {
-                    let p = Arc::new(p);
-                    for ch in src.channels() {
-                        let v = propagate(
-                            scene,
-                            optics,
-                            &ch,
-                            src.coherence_length_m,
-                            &p,
-                            target,
-                            CoefficientModel::Vector,
-                        );
-                        let r = paper_rules.then(|| {
-                            propagate(
-                                scene,
-                                optics,
-                                &ch,
-                                src.coherence_length_m,
-                                &p,
-                                target,
-                                CoefficientModel::PaperRules,
-                            )
-                        });
-                        found.push(Arrival {
+            let p = match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
+                Ok(p) => Arc::new(p),
+                Err(error) => {
+                    if let Some(f) = failed.as_deref_mut() {
+                        f.push(Failure {
                             source: si,
-                            channel: ch,
-                            path: Arc::clone(&p),
-                            vector: v,
-                            paper: r,
+                            sequence: seq.clone(),
+                            error,
                         });
                     }
+                    continue;
                 }
-                Err(error) => failed.push(Failure {
+            };
+            for ch in &channels {
+                let ray =
+                    |model| propagate(scene, optics, ch, src.coherence_length_m, &p, target, model);
+                found.push(Arrival {
                     source: si,
-                    sequence: seq.clone(),
-                    error,
-                }),
+                    channel: *ch,
+                    path: Arc::clone(&p),
+                    vector: ray(CoefficientModel::Vector),
+                    paper: paper_rules.then(|| ray(CoefficientModel::PaperRules)),
+                });
             }
         }
     }
-    (found, failed)
+    found
 }
 
 /// The panic message of asking for `paper_rules` of an arrival traced without them.
