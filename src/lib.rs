@@ -14,6 +14,7 @@ pub mod fresnel;
 pub mod geometry;
 pub mod interaction;
 pub mod material;
+pub mod memory;
 pub mod path;
 pub mod ray;
 pub mod render;

@@ -416,12 +416,36 @@ fn plan_targets(g: &GridGeometry) -> Vec<DVec3> {
     t
 }
 
+/// Peak memory of a render and of writing its pictures (bytes), estimated from its size: the
+/// per-row sums and the images built from them (3 f64 per pixel and shading each), the 8-bit
+/// RGB picture and its PNG encoding (≤ 3 bytes per pixel each; a strip is drawn at most
+/// [`MAX_SIDE`] rows tall), plus 64 MiB for the program, the scene and the thread scratch.
+pub fn memory_estimate(screen: &Screen, shadings: usize) -> u64 {
+    let g = &screen.geometry;
+    let pixels = (g.columns * g.rows) as u64;
+    let picture_rows = if screen.strip { MAX_SIDE } else { g.rows } as u64;
+    let sums = 2 * pixels * shadings as u64 * 3 * 8;
+    let picture = 2 * g.columns as u64 * picture_rows * 3;
+    sums + picture + (64 << 20)
+}
+
 /// Render `case` as requested.
 pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
     let t0 = Instant::now();
     if req.shadings.is_empty() {
         return Err("render: no shading (fidelity level) requested".into());
     }
+    let g = req.screen.geometry;
+    crate::memory::check_fits(
+        &format!(
+            "a {}x{} render of {} picture(s)",
+            g.columns,
+            g.rows,
+            req.shadings.len()
+        ),
+        memory_estimate(&req.screen, req.shadings.len()),
+        crate::memory::available_bytes()?,
+    )?;
     let built = build::build_scene(&case.spec.scene, &Overrides::default())?;
     let case_light = build::spectrum(&case.spec.light, &Overrides::default());
     let display_lambda_m = case_light[case_light.len() / 2].0;
@@ -468,7 +492,6 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         shadings: &req.shadings,
         paper_rules: req.shadings.contains(&Shading::Level(Fidelity::PaperRules)),
     };
-    let g = req.screen.geometry;
     let bar = progress_bar(g.rows as u64, req.progress);
     let ns = req.shadings.len();
     let rows: Vec<(Vec<[f64; 3]>, usize)> = (0..g.rows)
@@ -617,6 +640,12 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
         None => Spectrum::CaseLight,
         Some((grid, ill)) => Spectrum::White(SpectralIntegrator::new(grid, *ill)?),
     };
+    let g = screen.geometry;
+    let height = if screen.strip {
+        cmd.size.map_or(60, |s| s.1)
+    } else {
+        g.rows
+    };
     let r = render(
         &case,
         &Request {
@@ -626,12 +655,6 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
             progress: cmd.progress,
         },
     )?;
-    let g = screen.geometry;
-    let height = if screen.strip {
-        cmd.size.map_or(60, |s| s.1)
-    } else {
-        g.rows
-    };
     let mut lines = vec![format!(
         "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) traced in {:.2} s",
         case.spec.name,

@@ -11,6 +11,7 @@ use fringe::render::{self, ImageValues, Request, Screen, Shading, Spectrum};
 use fringe::report::image as img;
 use fringe::trace;
 use glam::DVec3;
+use predicates::prelude::PredicateBooleanExt;
 use std::path::Path;
 
 fn plate() -> Case {
@@ -416,4 +417,48 @@ fn render_command_writes_pngs_of_the_asked_size() {
         .assert()
         .code(2)
         .stderr(predicates::str::contains("grid"));
+}
+
+/// A render larger than the memory it may use is refused before it starts: exit 2, a message
+/// with both amounts, no picture. The budget is simulated with FRINGE_MEMORY_BYTES; the
+/// estimate for 2000 × 2000 pixels and two pictures is at least the 2 × 4e6 × 2 × 24 bytes of
+/// the per-pixel XYZ sums (≈ 366 MiB), far above 100 MB and far below 4 GB.
+#[test]
+fn a_render_too_large_for_the_memory_budget_is_refused_before_it_starts() {
+    let dir = tempfile::tempdir().unwrap();
+    let out = dir.path().join("big.png");
+    let screen = Screen::from_probe(&plate().spec.probe, Some((2000, 2000))).unwrap();
+    let estimate = render::memory_estimate(&screen, 2);
+    assert!(estimate >= 2 * 4_000_000 * 2 * 24, "estimate {estimate}");
+    assert_cmd::Command::cargo_bin("fringe")
+        .unwrap()
+        .env("FRINGE_MEMORY_BYTES", "100000000")
+        .args([
+            "render",
+            "figures/plate_amplitude_division.json",
+            "--fidelity",
+            "scalar_jump,vector",
+            "--size",
+            "2000x2000",
+            "-o",
+        ])
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(
+            predicates::str::contains("needs about").and(predicates::str::contains("95.4 MiB")),
+        );
+    assert!(
+        std::fs::read_dir(dir.path()).unwrap().next().is_none(),
+        "a refused render wrote a file"
+    );
+    // A malformed budget is an error too, never silently ignored.
+    assert_cmd::Command::cargo_bin("fringe")
+        .unwrap()
+        .env("FRINGE_MEMORY_BYTES", "lots")
+        .args(["render", "young_fig3", "--size", "4x4", "-o"])
+        .arg(&out)
+        .assert()
+        .code(2)
+        .stderr(predicates::str::contains("FRINGE_MEMORY_BYTES"));
 }
