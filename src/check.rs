@@ -210,6 +210,10 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             )));
         }
     }
+    // Every case's work is checked before any runs: a refused case costs nothing.
+    for c in &cases {
+        run::preflight(c)?;
+    }
     let results: Vec<CaseResult> = cases.iter().map(run::run).collect::<Result<_, _>>()?;
 
     let mut rows = Vec::new();

@@ -170,7 +170,66 @@ fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usi
     .map(|p| f.orders_for_bound(cos1, lambda_m, p, eps))
     .max()
     .unwrap_or(1);
-    Ok((2 * orders + 1).min(super::load::limits::MAX_INTERNAL_REFLECTIONS))
+    // The bound holds only if every order it asks for is traced: never cap silently.
+    let internal = 2 * orders + 1;
+    let cap = super::load::limits::MAX_INTERNAL_REFLECTIONS;
+    if internal > cap {
+        return Err(case_err(
+            case,
+            "$.trace.airy_tail_epsilon",
+            format!(
+                "the Airy tail bound {eps:e} needs {orders} reflected orders ({internal} internal \
+                 reflections) at {:.1} nm and θ1 = {:.4}°, more than the cap of {cap}: the plate \
+                 reflects too well there (|r21 r23| → 1 near grazing incidence); loosen \
+                 airy_tail_epsilon or move the probe away from grazing",
+                lambda_m * 1e9,
+                cos1.clamp(-1.0, 1.0).acos().to_degrees()
+            ),
+        ));
+    }
+    Ok(internal)
+}
+
+/// Path events a case may trace before it is refused (see [`preflight`]).
+pub const MAX_PATH_EVENTS: f64 = 1.0e9;
+
+/// The tracing work of a case, checked before anything runs: Σ over probe points of (spectral
+/// samples) × (m + 2)², m the internal-reflection budget at the point (the Airy tail rule may
+/// raise it near grazing incidence). (m + 2)² bounds the surface events of all sequences of a
+/// plane-parallel plate with up to m internal reflections (about m/2 orders of up to m + 2
+/// events each), and tracing time is proportional to the events. A case over
+/// [`MAX_PATH_EVENTS`] is refused with an error naming the key that drives it; so is a tail
+/// bound that needs more internal reflections than the cap.
+pub fn preflight(case: &Case) -> Result<f64, CaseError> {
+    let spec = &case.spec;
+    let mut events = 0.0;
+    let mut worst = 0;
+    for pt in build::probe_points(&spec.probe) {
+        let built = build::build_scene(&spec.scene, &pt.overrides)
+            .map_err(|e| case_err(case, "$.scene", e))?;
+        let spectrum = build::spectrum(&spec.light, &pt.overrides);
+        let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
+        worst = worst.max(internal);
+        events += spectrum.len() as f64 * ((internal + 2) as f64).powi(2);
+    }
+    if events > MAX_PATH_EVENTS {
+        let key = if spec.trace.airy_tail_epsilon.is_some() {
+            "$.trace.airy_tail_epsilon"
+        } else {
+            "$.trace.max_internal_reflections"
+        };
+        return Err(case_err(
+            case,
+            key,
+            format!(
+                "this case would trace about {events:.2e} path events (probe points × spectral \
+                 samples × (internal reflections + 2)², up to {worst} internal reflections), more \
+                 than the work cap of {MAX_PATH_EVENTS:.0e}: use fewer probe points or spectral \
+                 samples, or fewer internal reflections"
+            ),
+        ));
+    }
+    Ok(events)
 }
 
 /// The tracer settings of a case at a probe point: its internal-reflection budget (or the Airy
