@@ -5,6 +5,23 @@ use fringe::check::{self, CheckOptions, Format};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
+/// `print!` that ignores a closed stdout (e.g. `fringe check | head`): the verdict and the
+/// exit code must not turn into a broken-pipe panic.
+macro_rules! out {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = write!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
+/// `println!` that ignores a closed stdout (see `out!`).
+macro_rules! outln {
+    ($($arg:tt)*) => {{
+        use std::io::Write as _;
+        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+    }};
+}
+
 #[derive(Parser)]
 #[command(
     name = "fringe",
@@ -170,7 +187,7 @@ fn main() -> ExitCode {
             for case in &loaded {
                 match fringe::tradeoff::measure(case, repeats) {
                     Ok(rows) => {
-                        println!("{}", fringe::tradeoff::summary(&case.spec.name, &rows));
+                        outln!("{}", fringe::tradeoff::summary(&case.spec.name, &rows));
                         let path = out
                             .join("tradeoff")
                             .join(format!("{}_pareto.png", case.spec.name));
@@ -222,7 +239,7 @@ fn main() -> ExitCode {
         ) {
             Ok(lines) => {
                 for l in lines {
-                    println!("{l}");
+                    outln!("{l}");
                 }
                 ExitCode::SUCCESS
             }
@@ -247,16 +264,16 @@ fn main() -> ExitCode {
                 };
                 let m = fringe::figures::generate(&out, &opts)?;
                 for e in &m.fig8 {
-                    print!(
+                    out!(
                         "{}",
                         fringe::figures::fig8_text(&e.left, &e.right, &e.stats)
                     );
                 }
                 for (what, secs) in &m.timings {
-                    println!("{what}: {secs:.2} s");
+                    outln!("{what}: {secs:.2} s");
                 }
                 fringe::report::html::write_index(&out)?;
-                println!(
+                outln!(
                     "figures in {}, report {}",
                     out.join("figures").display(),
                     out.join("index.html").display()
@@ -288,7 +305,7 @@ fn main() -> ExitCode {
             }
             let rows = fringe::forward_study::run(seed, &rays, &pixels);
             let text = fringe::forward_study::csv(&rows);
-            print!("{text}");
+            out!("{text}");
             let path = out.join("forward").join("forward.csv");
             if let Err(e) = fringe::report::write_atomic(&path, text.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
@@ -330,8 +347,8 @@ fn main() -> ExitCode {
                 }
                 Ok(outcome) => {
                     match opts.format {
-                        Format::Table => print!("{}", fringe::report::table(&outcome.rows)),
-                        Format::Json => println!(
+                        Format::Table => out!("{}", fringe::report::table(&outcome.rows)),
+                        Format::Json => outln!(
                             "{}",
                             serde_json::to_string_pretty(&outcome.rows).unwrap_or_default()
                         ),
