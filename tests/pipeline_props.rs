@@ -1,0 +1,146 @@
+//! Random valid scenes through the whole pipeline (robustness issue: "no output anywhere may
+//! contain NaN or infinity"). A library case has every real number scaled by its own random
+//! factor in [0.6, 1.6] (indices, thicknesses, distances, angles, wavelengths, directions;
+//! counts and tolerances stay) and its probe cut to at most 7 points; what the loader accepts
+//! is run exactly as `fringe check` runs it (preflight, trace at every fidelity level, closed
+//! forms, the Airy convergence report) and turned into the report's rows and the golden CSV.
+//! Nothing may panic, a rejection must be a `CaseError` with a JSON path and a message, and every
+//! number of an accepted run must be finite.
+//!
+//! 64 scenes by default; `PROPTEST_CASES=1000 cargo test --release --test pipeline_props` for
+//! a longer run.
+
+use fringe::case::load;
+use fringe::case::run;
+use fringe::report;
+use proptest::prelude::*;
+use serde_json::Value;
+use std::path::{Path, PathBuf};
+
+fn library() -> Vec<(String, Value)> {
+    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
+    let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("cases"))
+        .unwrap()
+        .map(|e| e.unwrap().path())
+        .filter(|p| {
+            p.extension().is_some_and(|x| x == "json")
+                && p.file_name().is_some_and(|n| n != "schema.json")
+        })
+        .collect();
+    files.sort();
+    files
+        .iter()
+        .map(|p| {
+            let v = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();
+            (p.file_name().unwrap().to_string_lossy().into_owned(), v)
+        })
+        .collect()
+}
+
+/// Keys whose numbers are counts, ids or verdict settings: kept as they are.
+const KEEP: &[&str] = &[
+    "tolerances",
+    "golden_tolerance",
+    "count",
+    "pixels",
+    "samples",
+    "tir_count",
+    "max_internal_reflections",
+    "coherence_group",
+];
+
+/// Scale every real number of `v` by the next factor of `factors` (cycled).
+fn perturb(v: &mut Value, key: &str, factors: &[f64], k: &mut usize) {
+    match v {
+        _ if KEEP.contains(&key) => {}
+        Value::Number(n) => {
+            let x = n.as_f64().unwrap();
+            let f = factors[*k % factors.len()];
+            *k += 1;
+            if let Some(m) = serde_json::Number::from_f64(x * f) {
+                *v = Value::Number(m);
+            }
+        }
+        Value::Array(a) => a.iter_mut().for_each(|e| perturb(e, key, factors, k)),
+        Value::Object(o) => o.iter_mut().for_each(|(kk, e)| perturb(e, kk, factors, k)),
+        _ => {}
+    }
+}
+
+/// At most 7 probe points (a grid: 3 × 2).
+fn shrink_probe(case: &mut Value) {
+    let Some(probe) = case.get_mut("probe").and_then(Value::as_object_mut) else {
+        return;
+    };
+    for (kind, p) in probe.iter_mut() {
+        if kind == "grid" {
+            p["pixels"] = serde_json::json!([3, 2]);
+        } else if let Some(c) = p.get("count").and_then(Value::as_u64) {
+            p["count"] = Value::from(c.min(7));
+        }
+    }
+}
+
+fn all_finite(xs: &[f64]) -> bool {
+    xs.iter().all(|x| x.is_finite())
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig {
+        cases: std::env::var("PROPTEST_CASES").ok().and_then(|s| s.parse().ok()).unwrap_or(64),
+        failure_persistence: None,
+        ..ProptestConfig::default()
+    })]
+
+    #[test]
+    fn random_valid_scenes_give_finite_reports(
+        which in 0usize..16,
+        factors in proptest::collection::vec(0.6..1.6f64, 1..40),
+    ) {
+        let lib = library();
+        let (file, base) = &lib[which % lib.len()];
+        let mut case = base.clone();
+        let mut k = 0;
+        perturb(&mut case, "", &factors, &mut k);
+        shrink_probe(&mut case);
+        let text = serde_json::to_string_pretty(&case).unwrap();
+        let path = Path::new("perturbed").join(file);
+        let loaded = match load::parse(&path, &text) {
+            Ok(c) => c,
+            Err(e) => {
+                // Rejected by the loader: a clear error is all that is asked here.
+                prop_assert!(e.json_path.starts_with('$') && !e.message.is_empty(), "{e:?}");
+                return Ok(());
+            }
+        };
+        let result = run::preflight(&loaded).and_then(|_| run::run_with(&loaded, true));
+        let r = match result {
+            Ok(r) => r,
+            Err(e) => {
+                // e.g. no light reaches the moved probe: an error naming the key, never a panic.
+                prop_assert!(e.json_path.starts_with('$') && !e.message.is_empty(), "{e:?}");
+                return Ok(());
+            }
+        };
+        for m in &r.metrics {
+            prop_assert!(all_finite(&m.coordinates), "{file}: {} coordinates {:?}", m.name, m.coordinates);
+            prop_assert!(all_finite(&m.analytic), "{file}: {} closed form {:?}\n{text}", m.name, m.analytic);
+            for (level, t) in &m.traced {
+                prop_assert!(all_finite(t), "{file}: {} traced at {level:?}: {t:?}\n{text}", m.name);
+            }
+        }
+        for c in &r.convergence {
+            let line = format!("{c:?}");
+            prop_assert!(!line.contains("NaN") && !line.contains("inf"), "{file}: convergence row {line}");
+        }
+        for row in report::rows(&r) {
+            prop_assert!(
+                row.max_abs_dev.is_finite() && row.rms_dev.is_finite()
+                    && row.tolerance.is_none_or(f64::is_finite),
+                "{file}: report row {row:?}\n{text}"
+            );
+        }
+        let csv = report::golden_csv(&r);
+        prop_assert!(!csv.contains("NaN") && !csv.contains("inf"), "{file}: golden CSV has a non-finite value");
+    }
+}
