@@ -144,3 +144,46 @@ proptest! {
         prop_assert!(!csv.contains("NaN") && !csv.contains("inf"), "{file}: golden CSV has a non-finite value");
     }
 }
+
+/// The library's Fresnel rhomb with `air` of index `n_out` and glass of index `n_glass`.
+fn rhomb(n_out: f64, n_glass: f64) -> load::Case {
+    let text = std::fs::read_to_string(
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("cases/fresnel_rhomb.json"),
+    )
+    .unwrap();
+    let mut v: Value = serde_json::from_str(&text).unwrap();
+    v["scene"]["media"]["air"]["constant"]["n"] = Value::from(n_out);
+    v["scene"]["media"]["glass"]["constant"]["n"] = Value::from(n_glass);
+    load::parse(Path::new("rhomb.json"), &v.to_string()).unwrap()
+}
+
+/// Found by `random_valid_scenes_give_finite_reports`: the rhomb's closed form assumed air
+/// (n = 1) beyond the TIR face and gave NaN when the glass was rarer than 1. With the medium
+/// the scene has there, the closed form tan(Δ/2) = cos θ sqrt(sin²θ − n21²)/sin²θ (n21 =
+/// n_out/n_glass) agrees with the trace in water-like surroundings; where the face does not
+/// totally reflect, the reference is refused with a message instead of a NaN.
+#[test]
+fn rhomb_retardance_uses_the_medium_beyond_the_face() {
+    // The library rhomb's TIR angle is 54.6°: 1.8 sin 54.6° = 1.47 > 1.2 (TIR).
+    let r = run::run(&rhomb(1.2, 1.8)).unwrap();
+    let m = r.metrics.iter().find(|m| m.name == "retardance").unwrap();
+    let theta = 54.6f64.to_radians();
+    let n21 = 1.2 / 1.8;
+    let one =
+        2.0 * (theta.cos() * (theta.sin().powi(2) - n21 * n21).sqrt() / theta.sin().powi(2)).atan();
+    assert!(
+        (m.analytic[0].abs() - 2.0 * one).abs() < 1e-3,
+        "closed form {} vs two TIRs at about 54.6° {}",
+        m.analytic[0],
+        2.0 * one
+    );
+    let s = m.stats(fringe::fidelity::Fidelity::Vector).unwrap();
+    assert!(
+        s.max_abs_dev <= 1e-9,
+        "traced vs closed form: {}",
+        s.max_abs_dev
+    );
+    // 1.51 sin 54.6° = 1.23 < 1.3: no TIR, so no retardance to compare with.
+    let e = run::run(&rhomb(1.3, 1.51)).unwrap_err();
+    assert!(e.message.contains("no total internal reflection"), "{e:?}");
+}

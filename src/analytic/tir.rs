@@ -25,17 +25,18 @@ pub fn retardance_magnitude(n1: f64, n2: f64, theta: f64) -> f64 {
     2.0 * (theta.cos() * (s2 - n21 * n21).sqrt() / s2).atan()
 }
 
-/// Retardance of `k` identical TIRs in one plane of incidence, arg(p) − arg(s) of the output
-/// (radians, e^{-iωt}): k (P6 − P5). Normal-incidence entry and exit faces add no retardance
-/// (t_s = t_p there).
-pub fn rhomb_retardance(n_glass: f64, theta: f64, k: usize) -> f64 {
-    k as f64 * (phase_p(n_glass, 1.0, theta) - phase_s(n_glass, 1.0, theta))
+/// Retardance of `k` identical TIRs in one plane of incidence, glass of index `n_glass` against
+/// a medium of index `n_out` < n_glass sin θ, arg(p) − arg(s) of the output (radians,
+/// e^{-iωt}): k (P6 − P5). Normal-incidence entry and exit faces add no retardance (t_s = t_p
+/// there).
+pub fn rhomb_retardance(n_glass: f64, n_out: f64, theta: f64, k: usize) -> f64 {
+    k as f64 * (phase_p(n_glass, n_out, theta) - phase_s(n_glass, n_out, theta))
 }
 
-/// Output of a rhomb for 45° linear input (equal s and p): the normalised Stokes V/I =
-/// sin(retardance) (±1: circular).
+/// Output of a rhomb in air (n = 1) for 45° linear input (equal s and p): the normalised
+/// Stokes V/I = sin(retardance) (±1: circular).
 pub fn rhomb_circularity(n_glass: f64, theta: f64, k: usize) -> f64 {
-    rhomb_retardance(n_glass, theta, k).sin()
+    rhomb_retardance(n_glass, 1.0, theta, k).sin()
 }
 
 /// Amplitude factors (s, p) through a TIR prism: normal-incidence entry (t12), one TIR at θ,

@@ -282,8 +282,28 @@ pub fn value(
             let (d, _) = plane_wave(scene).ok_or("rhomb_retardance needs a plane-wave source")?;
             let n = built.surface(tir_surface)?;
             let theta = d.dot(scene.surfaces[n].plane.normal).abs().acos();
-            let r =
-                analytic::tir::rhomb_retardance(index(built, glass, lambda_m)?, theta, *tir_count);
+            let n_glass = index(built, glass, lambda_m)?;
+            // The medium beyond the TIR face: the side of the interface that is not the glass.
+            let SurfaceKind::Interface { front, back, .. } = &scene.surfaces[n].kind else {
+                return Err(format!("{tir_surface}: the TIR face must be an interface"));
+            };
+            let outside = if front.name == *glass { back } else { front };
+            let n_out = outside.index(lambda_m).map_err(|e| e.to_string())?;
+            if n_glass * theta.sin() <= n_out {
+                return Err(format!(
+                    "no total internal reflection at {tir_surface}: θ = {:.4}° inside {glass} \
+                     (n = {n_glass}) against {} (n = {n_out}) is not beyond the critical angle \
+                     ({}); the rhomb retardance exists only under TIR",
+                    theta.to_degrees(),
+                    outside.name,
+                    if n_out < n_glass {
+                        format!("{:.4}°", (n_out / n_glass).asin().to_degrees())
+                    } else {
+                        "none: the glass is not the denser medium".to_string()
+                    }
+                ));
+            }
+            let r = analytic::tir::rhomb_retardance(n_glass, n_out, theta, *tir_count);
             Ok(wrap(r))
         }
         ReferenceModel::PlaneWaveBeams { beams } => {
@@ -398,16 +418,31 @@ pub fn airy_film(
     let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
     let nrm = scene.surfaces[top].plane.normal;
     let (d, _) = plane_wave(scene).ok_or("needs a plane-wave source")?;
-    Ok((
-        analytic::plate::Film {
-            n1: ix(m1)?,
-            n2: ix(m2)?,
-            n3: ix(m3)?,
-            thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
-                .dot(nrm),
-        },
-        d.dot(nrm).abs(),
-    ))
+    let film = analytic::plate::Film {
+        n1: ix(m1)?,
+        n2: ix(m2)?,
+        n3: ix(m3)?,
+        thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
+            .dot(nrm),
+    };
+    let cos1 = d.dot(nrm).abs();
+    // Beyond the critical angle of the top face the film carries only an evanescent wave
+    // (frustrated total reflection): no ray enters it and the Airy sum of propagating beams
+    // has no meaning (its cos θ2 would be imaginary).
+    let sin1 = (1.0 - cos1 * cos1).max(0.0).sqrt();
+    if film.n1 * sin1 >= film.n2 {
+        return Err(format!(
+            "the light meets the film at θ1 = {:.4}°, at or beyond the critical angle {:.4}° of its \
+             top face (n1 = {} > n2 = {}): it enters the film only as an evanescent wave \
+             (frustrated total reflection), which neither ray optics nor the Airy sum of \
+             propagating beams describes; keep θ1 below the critical angle",
+            sin1.asin().to_degrees(),
+            (film.n2 / film.n1).asin().to_degrees(),
+            film.n1,
+            film.n2
+        ));
+    }
+    Ok((film, cos1))
 }
 
 /// Plane waves through planar faces: optical path by wavefront continuity,
