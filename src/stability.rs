@@ -415,12 +415,15 @@ fn r_p_tangent(n1: f64, n2: f64, theta: f64) -> f64 {
     (theta - t).tan() / (theta + t).tan()
 }
 
-/// The far-field reflectance (or transmittance) of a film n1 | n2 (thickness d) | n3 traced with
-/// `internal` internal reflections, for linear polarization at `pol_angle` from s.
-fn traced_film(
+/// The far-field reflectance (or transmittance) of a film n1 | n2 (thickness d, m) | n3 lit by
+/// a plane wave at `theta` (rad) of vacuum wavelength `lambda_m`, traced at `vector` fidelity
+/// with `internal` internal reflections, for linear polarization at `pol_angle` (rad) from s;
+/// NaN when the scene has no optics at `lambda_m` or the transmitted direction does not exist.
+pub fn traced_film(
     n: [f64; 3],
     d: f64,
     theta: f64,
+    lambda_m: f64,
     pol_angle: f64,
     internal: usize,
     reflected: bool,
@@ -436,7 +439,7 @@ fn traced_film(
         Medium::constant("n3", n[2]),
     );
     scene.sources.push(plane_wave(theta, pol_angle));
-    let Ok(optics) = scene.optics(WAVELENGTH_M) else {
+    let Ok(optics) = scene.optics(lambda_m) else {
         return f64::NAN;
     };
     let d_in = DVec3::new(theta.sin(), 0.0, -theta.cos());
@@ -708,7 +711,7 @@ fn film_rows(rows: &mut Vec<StabilityRow>) {
                         pol_name(pol)
                     ),
                     "R (Airy)",
-                    traced_film(n, d, theta, pol_angle(pol), 15, true),
+                    traced_film(n, d, theta, WAVELENGTH_M, pol_angle(pol), 15, true),
                     film.reflectance(theta.cos(), WAVELENGTH_M, pol),
                     DeviationKind::Relative,
                     Some(1e-9),
@@ -747,7 +750,15 @@ fn finesse_rows(rows: &mut Vec<StabilityRow>) {
             g,
             format!("1 | 1.5 | 1, d = 1 µm, θ = 85°, s, N = {orders} orders; {how}"),
             "R truncated vs Airy",
-            traced_film([1.0, 1.5, 1.0], 1e-6, theta, 0.0, 2 * orders - 1, true),
+            traced_film(
+                [1.0, 1.5, 1.0],
+                1e-6,
+                theta,
+                WAVELENGTH_M,
+                0.0,
+                2 * orders - 1,
+                true,
+            ),
             exact,
             DeviationKind::Absolute,
             Some(tol),
@@ -797,7 +808,7 @@ fn random_film_rows(rows: &mut Vec<StabilityRow>) {
             .max()
             .unwrap_or(1);
         let internal = (2 * orders + 1).min(2001);
-        let r = traced_film([1.0, n2, n3], d, theta, pol, internal, true);
+        let r = traced_film([1.0, n2, n3], d, theta, WAVELENGTH_M, pol, internal, true);
         let transmits = fresnel::refract(
             DVec3::new(theta.sin(), 0.0, -theta.cos()),
             DVec3::Z,
@@ -806,7 +817,7 @@ fn random_film_rows(rows: &mut Vec<StabilityRow>) {
         )
         .is_some();
         let t = if transmits {
-            traced_film([1.0, n2, n3], d, theta, pol, internal, false)
+            traced_film([1.0, n2, n3], d, theta, WAVELENGTH_M, pol, internal, false)
         } else {
             0.0
         };

@@ -14,73 +14,9 @@ use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
 use proptest::prelude::*;
 
-fn plane_wave(theta: f64, angle_rad: f64) -> Source {
-    Source {
-        name: "beam".into(),
-        emitter: Emitter::PlaneWave {
-            direction: DVec3::new(theta.sin(), 0.0, -theta.cos()),
-            reference_point: DVec3::new(0.0, 0.0, 1e-3),
-        },
-        polarization: Polarization::Linear {
-            reference: DVec3::Y,
-            angle_rad,
-        },
-        intensity: 1.0,
-        coherence_group: 0,
-        coherence_length_m: f64::INFINITY,
-    }
-}
-
-/// Traced reflectance (or transmittance) of a film in the far field, `internal` reflections.
-fn traced_film(
-    n: [f64; 3],
-    d: f64,
-    theta: f64,
-    lambda: f64,
-    pol_angle: f64,
-    internal: usize,
-    reflected: bool,
-) -> f64 {
-    let mut scene = Scene::new(Medium::constant("n1", n[0]));
-    scene.add_plate(
-        "film",
-        DVec3::ZERO,
-        DVec3::Z,
-        d,
-        Medium::constant("n1", n[0]),
-        Medium::constant("n2", n[1]),
-        Medium::constant("n3", n[2]),
-    );
-    scene.sources.push(plane_wave(theta, pol_angle));
-    let optics = scene.optics(lambda).unwrap();
-    let d_in = DVec3::new(theta.sin(), 0.0, -theta.cos());
-    let dir = if reflected {
-        DVec3::new(theta.sin(), 0.0, theta.cos())
-    } else {
-        fringe::fresnel::refract(d_in, DVec3::Z, n[0], n[2]).unwrap()
-    };
-    let target = Target::Direction {
-        dir,
-        reference: DVec3::new(0.0, 0.0, 1e-3),
-    };
-    let limits = EnumerationLimits {
-        max_internal_reflections: internal,
-        max_events: 2 * internal + 4,
-    };
-    let plan = trace::plan(&scene, &optics, &[DVec3::new(0.0, 0.0, 1e-3)], &limits);
-    let st = TraceSettings {
-        limits,
-        ..Default::default()
-    };
-    let (arr, _) = trace::arrivals(&scene, &optics, &plan, &target, &st);
-    let i = trace::intensity(&arr, Fidelity::Vector);
-    if reflected {
-        i
-    } else {
-        // Far-field |E|² of the transmitted plane wave → power ratio (n3 cos θ3)/(n1 cos θ1).
-        i * n[2] * dir.z.abs() / (n[0] * theta.cos())
-    }
-}
+/// The traced far-field film reflectance/transmittance (the tracer's own scene set-up, shared
+/// with the report's stability sweep).
+use fringe::stability::traced_film;
 
 #[test]
 fn named_angles_plus_minus_1e_12() {
