@@ -226,17 +226,27 @@ pub fn refract(d_i: DVec3, normal: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
 /// incidence (|d_i × N| below 1e-12) the plane of incidence is undefined and `fallback`
 /// (projected perpendicular to `d_i`) is used; any choice gives the same 3D fields.
 pub fn s_direction(d_i: DVec3, normal: DVec3, fallback: DVec3) -> DVec3 {
+    s_of_plane_of_incidence(d_i, normal).unwrap_or_else(|| s_at_normal_incidence(d_i, fallback))
+}
+
+/// The s vector of [`s_direction`] when the plane of incidence is defined (|d_i × N| > 1e-12),
+/// `None` at normal incidence, where only the fallback decides: what every ray of direction
+/// `d_i` shares at this interface, whatever its polarization frame.
+pub fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
     let n_o = if d_i.dot(normal) < 0.0 {
         normal
     } else {
         -normal
     };
     let c = d_i.cross(n_o);
-    if c.length() > 1e-12 {
-        // Near normal incidence d_i × N has relative error ε/|d_i × N|: project out N again so s
-        // stays ⟂ N and d_i to rounding (a no-op in exact arithmetic; tests/interaction_props.rs).
-        return (c - c.dot(n_o) * n_o).normalize();
-    }
+    // Near normal incidence d_i × N has relative error ε/|d_i × N|: project out N again so s
+    // stays ⟂ N and d_i to rounding (a no-op in exact arithmetic; tests/interaction_props.rs).
+    (c.length() > 1e-12).then(|| (c - c.dot(n_o) * n_o).normalize())
+}
+
+/// The s vector of [`s_direction`] at normal incidence: `fallback` projected perpendicular to
+/// `d_i` (any perpendicular if it is nearly parallel to `d_i`).
+pub fn s_at_normal_incidence(d_i: DVec3, fallback: DVec3) -> DVec3 {
     let f = fallback - fallback.dot(d_i) * d_i;
     if f.length() > 1e-6 {
         f.normalize()

@@ -81,124 +81,180 @@ pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3, current: f6
     }
 }
 
-/// The parent ray at the hit point, split into s and p, with the coefficients of `model`.
-struct Split {
+/// What every ray of direction `d_i` in a medium of index `index` meets at a hit, whatever its
+/// polarization: the indices, the coefficients of the model and the s vector.
+struct Encounter {
     d_i: DVec3,
-    /// The s unit vector (PHYSICS.md §1).
-    s: DVec3,
-    /// The parent's field components along s and p_i.
-    a_s: Complex64,
-    a_p: Complex64,
+    /// The s unit vector (PHYSICS.md §1), `None` at normal incidence, where each ray's own X
+    /// decides ([`fresnel::s_direction`]).
+    s: Option<DVec3>,
     n1: f64,
     n2: f64,
     cos_theta_i: f64,
     coefficients: FresnelCoefficients,
 }
 
-/// Advances `parent` to the hit point and splits its field.
-fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
-    parent.advance_to(hit.point);
-    let d_i = parent.dir;
-    let cos_theta_i = d_i.dot(hit.normal).abs().min(1.0);
+impl Encounter {
+    fn new(d_i: DVec3, index: f64, hit: &InterfaceHit, model: CoefficientModel) -> Self {
+        let cos_theta_i = d_i.dot(hit.normal).abs().min(1.0);
+        let (n1, n2) = indices_for(hit.optics, hit.normal, d_i, index);
+        let coefficients = match (hit.optics, model) {
+            (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
+            (SurfaceOptics::Splitter { reflectance, .. }, _) => {
+                fresnel::ideal_splitter(reflectance, d_i.dot(hit.normal) < 0.0)
+            }
+            (SurfaceOptics::Dielectric { .. }, CoefficientModel::Vector) => {
+                fresnel::fresnel(n1, n2, cos_theta_i)
+            }
+            (SurfaceOptics::Dielectric { .. }, CoefficientModel::PaperRules) => {
+                fresnel::paper_rules(n1, n2, cos_theta_i)
+            }
+        };
+        Encounter {
+            d_i,
+            s: fresnel::s_of_plane_of_incidence(d_i, hit.normal),
+            n1,
+            n2,
+            cos_theta_i,
+            coefficients,
+        }
+    }
 
-    // Step 1: the s/p frame of the incident ray.
-    let s = fresnel::s_direction(d_i, hit.normal, parent.x);
-    let p_i = d_i.cross(s);
-    let e = parent.field();
-    let (a_s, a_p) = (dot(&e, s), dot(&e, p_i));
+    /// The s vector for a ray whose frame has X axis `x`: `fresnel::s_direction(d_i, N, x)`.
+    fn s_for(&self, x: DVec3) -> DVec3 {
+        self.s
+            .unwrap_or_else(|| fresnel::s_at_normal_incidence(self.d_i, x))
+    }
 
-    // Step 2: the coefficients.
-    let (n1, n2) = indices_for(hit.optics, hit.normal, d_i, parent.index);
-    let coefficients = match (hit.optics, model) {
-        (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
-        (SurfaceOptics::Splitter { reflectance, .. }, _) => {
-            fresnel::ideal_splitter(reflectance, d_i.dot(hit.normal) < 0.0)
-        }
-        (SurfaceOptics::Dielectric { .. }, CoefficientModel::Vector) => {
-            fresnel::fresnel(n1, n2, cos_theta_i)
-        }
-        (SurfaceOptics::Dielectric { .. }, CoefficientModel::PaperRules) => {
-            fresnel::paper_rules(n1, n2, cos_theta_i)
-        }
-    };
-    Split {
-        d_i,
-        s,
-        a_s,
-        a_p,
-        n1,
-        n2,
-        cos_theta_i,
-        coefficients,
+    /// The components (a_s, a_p) of the field `e` along s and p_i = d_i × s.
+    fn amplitudes(&self, e: &Field3, s: DVec3) -> (Complex64, Complex64) {
+        let p_i = self.d_i.cross(s);
+        (dot(e, s), dot(e, p_i))
     }
 }
 
-/// A child of the split parent: direction `dir`, frame (s, dir × s), Jones (c_s a_s, c_p a_p).
-fn child(
-    mut ray: Ray,
-    sp: &Split,
+/// The parent ray at the hit point, split into s and p, with the coefficients of the model.
+struct Split {
+    encounter: Encounter,
+    /// The s unit vector of this ray (PHYSICS.md §1).
+    s: DVec3,
+    /// The parent's field components along s and p_i.
+    a_s: Complex64,
+    a_p: Complex64,
+}
+
+/// Advances `parent` to the hit point and splits its field.
+fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
+    parent.advance_to(hit.point);
+    // Step 1: the coefficients and the s/p frame of the incident ray.
+    let encounter = Encounter::new(parent.dir, parent.index, hit, model);
+    let s = encounter.s_for(parent.x);
+    // Step 2: the field along s and p_i.
+    let (a_s, a_p) = encounter.amplitudes(&parent.field(), s);
+    Split {
+        encounter,
+        s,
+        a_s,
+        a_p,
+    }
+}
+
+/// One child of an encounter, apart from the parent's field: its direction, the coefficients
+/// (c_s, c_p) it applies, its medium, whether it keeps coherence and its ledger entry.
+struct Branch {
     dir: DVec3,
     c: [Complex64; 2],
     index: f64,
     keep: bool,
     entry: LedgerEntry,
-) -> Ray {
-    ray.dir = dir;
-    ray.x = sp.s;
-    ray.y = dir.cross(sp.s);
-    ray.jones = [c[0] * sp.a_s, c[1] * sp.a_p];
-    ray.index = index;
-    if !keep && ray.coherence_id != INCOHERENT {
+}
+
+/// Step 3: the reflected branch.
+fn reflected(en: &Encounter, hit: &InterfaceHit) -> Branch {
+    let c = &en.coefficients;
+    Branch {
+        dir: fresnel::reflect(en.d_i, hit.normal),
+        c: [c.r_s, c.r_p],
+        index: en.n1,
+        keep: hit.coherence.reflected_keeps,
+        entry: LedgerEntry::Reflection {
+            surface: hit.surface,
+            r_s: c.r_s,
+            r_p: c.r_p,
+            tir: c.total_internal_reflection,
+        },
+    }
+}
+
+/// Step 4: the refracted branch, unless TIR or a mirror.
+fn refracted(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
+    if matches!(hit.optics, SurfaceOptics::IdealMirror) {
+        return None;
+    }
+    let c = &en.coefficients;
+    Some(Branch {
+        dir: fresnel::refract(en.d_i, hit.normal, en.n1, en.n2)?,
+        c: [c.t_s, c.t_p],
+        index: en.n2,
+        keep: hit.coherence.refracted_keeps,
+        entry: LedgerEntry::Refraction {
+            surface: hit.surface,
+            t_s: c.t_s,
+            t_p: c.t_p,
+        },
+    })
+}
+
+/// The branch a path follows (`reflect`: the reflected one).
+fn followed(en: &Encounter, hit: &InterfaceHit, reflect: bool) -> Option<Branch> {
+    if reflect {
+        Some(reflected(en, hit))
+    } else {
+        refracted(en, hit)
+    }
+}
+
+/// The polarization of a child: direction `b.dir`, frame (s, dir × s), Jones (c_s a_s, c_p a_p).
+fn child_frame(b: &Branch, s: DVec3, a_s: Complex64, a_p: Complex64) -> JonesFrame {
+    JonesFrame {
+        x: s,
+        y: b.dir.cross(s),
+        jones: [b.c[0] * a_s, b.c[1] * a_p],
+    }
+}
+
+/// Turns the split parent `ray` into its child along `b`.
+fn child(ray: &mut Ray, sp: &Split, b: Branch) {
+    ray.dir = b.dir;
+    child_frame(&b, sp.s, sp.a_s, sp.a_p).apply_to(ray);
+    ray.index = b.index;
+    if !b.keep && ray.coherence_id != INCOHERENT {
         ray.coherence_id = INCOHERENT;
         ray.ledger
             .entries
             .push(LedgerEntry::CoherenceLost { surface: None });
     }
-    ray.ledger.entries.push(entry);
-    ray
-}
-
-/// Step 3: the reflected child.
-fn reflected(ray: Ray, sp: &Split, hit: &InterfaceHit) -> Ray {
-    let c = &sp.coefficients;
-    let entry = LedgerEntry::Reflection {
-        surface: hit.surface,
-        r_s: c.r_s,
-        r_p: c.r_p,
-        tir: c.total_internal_reflection,
-    };
-    let d_r = fresnel::reflect(sp.d_i, hit.normal);
-    let keep = hit.coherence.reflected_keeps;
-    child(ray, sp, d_r, [c.r_s, c.r_p], sp.n1, keep, entry)
-}
-
-/// Step 4: the refracted child, unless TIR or a mirror.
-fn refracted(ray: Ray, sp: &Split, hit: &InterfaceHit) -> Option<Ray> {
-    if matches!(hit.optics, SurfaceOptics::IdealMirror) {
-        return None;
-    }
-    let d_t = fresnel::refract(sp.d_i, hit.normal, sp.n1, sp.n2)?;
-    let c = &sp.coefficients;
-    let entry = LedgerEntry::Refraction {
-        surface: hit.surface,
-        t_s: c.t_s,
-        t_p: c.t_p,
-    };
-    let keep = hit.coherence.refracted_keeps;
-    Some(child(ray, sp, d_t, [c.t_s, c.t_p], sp.n2, keep, entry))
+    ray.ledger.entries.push(b.entry);
 }
 
 /// Split `ray` at `hit` into its reflected and refracted children using `model`.
 pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Children {
     let mut parent = ray.clone();
     let sp = split(&mut parent, hit, model);
+    let refracted = refracted(&sp.encounter, hit).map(|b| {
+        let mut r = parent.clone();
+        child(&mut r, &sp, b);
+        r
+    });
+    child(&mut parent, &sp, reflected(&sp.encounter, hit));
+    let en = &sp.encounter;
     Children {
-        refracted: refracted(parent.clone(), &sp, hit),
-        reflected: reflected(parent, &sp, hit),
-        coefficients: sp.coefficients,
-        cos_theta_i: sp.cos_theta_i,
-        n1: sp.n1,
-        n2: sp.n2,
+        reflected: parent,
+        refracted,
+        coefficients: en.coefficients,
+        cos_theta_i: en.cos_theta_i,
+        n1: en.n1,
+        n2: en.n2,
     }
 }
 
@@ -212,9 +268,74 @@ pub fn interact_along(
     reflect: bool,
 ) -> Option<Ray> {
     let sp = split(&mut ray, hit, model);
-    if reflect {
-        Some(reflected(ray, &sp, hit))
-    } else {
-        refracted(ray, &sp, hit)
+    let b = followed(&sp.encounter, hit, reflect)?;
+    child(&mut ray, &sp, b);
+    Some(ray)
+}
+
+/// The polarization of a ray: its frame axes X, Y and its Jones vector (see [`Ray`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JonesFrame {
+    pub x: DVec3,
+    pub y: DVec3,
+    pub jones: [Complex64; 2],
+}
+
+impl JonesFrame {
+    /// The polarization of `ray`.
+    pub fn of(ray: &Ray) -> Self {
+        JonesFrame {
+            x: ray.x,
+            y: ray.y,
+            jones: ray.jones,
+        }
     }
+
+    /// Gives `ray` this polarization.
+    pub fn apply_to(&self, ray: &mut Ray) {
+        ray.x = self.x;
+        ray.y = self.y;
+        ray.jones = self.jones;
+    }
+
+    /// The complex 3D field `J_x X + J_y Y` ([`Ray::field`]).
+    pub fn field(&self) -> Field3 {
+        crate::ray::field_of(self.jones, self.x, self.y)
+    }
+}
+
+/// [`interact_along`] for rays that differ only in polarization (the channels of one source
+/// along one path): `lead`, and one more ray per entry of `others` that equals `lead` except for
+/// its [`JonesFrame`]. The encounter (indices, coefficients, s vector, child direction, ledger
+/// entry) is computed once; `lead` and each entry of `others` end up bitwise as
+/// [`interact_along`] leaves its own ray, including at normal incidence, where each ray's X
+/// picks its s. Returns false, with the rays partly updated, where [`interact_along`] gives
+/// `None`.
+pub fn interact_along_shared(
+    lead: &mut Ray,
+    others: &mut [JonesFrame],
+    hit: &InterfaceHit,
+    model: CoefficientModel,
+    reflect: bool,
+) -> bool {
+    lead.advance_to(hit.point);
+    let encounter = Encounter::new(lead.dir, lead.index, hit, model);
+    let Some(b) = followed(&encounter, hit, reflect) else {
+        return false;
+    };
+    for o in others.iter_mut() {
+        let s = encounter.s_for(o.x);
+        let (a_s, a_p) = encounter.amplitudes(&o.field(), s);
+        *o = child_frame(&b, s, a_s, a_p);
+    }
+    let s = encounter.s_for(lead.x);
+    let (a_s, a_p) = encounter.amplitudes(&lead.field(), s);
+    let sp = Split {
+        encounter,
+        s,
+        a_s,
+        a_p,
+    };
+    child(lead, &sp, b);
+    true
 }

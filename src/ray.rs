@@ -97,6 +97,16 @@ impl PhaseLedger {
     }
 }
 
+/// The complex 3D field `J_x X + J_y Y` of the Jones vector `[J_x, J_y]` in the frame (X, Y).
+pub fn field_of(jones: [Complex64; 2], x: DVec3, y: DVec3) -> Field3 {
+    let [jx, jy] = jones;
+    [
+        jx * x.x + jy * y.x,
+        jx * x.y + jy * y.y,
+        jx * x.z + jy * y.z,
+    ]
+}
+
 /// A linear polarized ray with the attributes of paper §3.5.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Ray {
@@ -135,7 +145,26 @@ impl Ray {
         wavelength_m: f64,
         index: f64,
     ) -> Ray {
-        let dir = dir.normalize();
+        Ray::linear_unit(
+            origin,
+            dir.normalize(),
+            e_dir,
+            amplitude,
+            wavelength_m,
+            index,
+        )
+    }
+
+    /// [`Ray::linear`] with `dir` already normalized (`dir.normalize()` of the direction
+    /// [`Ray::linear`] would be given: one normalization serves several rays).
+    pub fn linear_unit(
+        origin: DVec3,
+        dir: DVec3,
+        e_dir: DVec3,
+        amplitude: f64,
+        wavelength_m: f64,
+        index: f64,
+    ) -> Ray {
         let e = e_dir - e_dir.dot(dir) * dir;
         let x = if e.length() > 1e-12 {
             e.normalize()
@@ -160,12 +189,7 @@ impl Ray {
 
     /// The complex 3D field amplitude `J_x X + J_y Y` (without the path phase).
     pub fn field(&self) -> Field3 {
-        let [jx, jy] = self.jones;
-        [
-            jx * self.x.x + jy * self.y.x,
-            jx * self.x.y + jy * self.y.y,
-            jx * self.x.z + jy * self.y.z,
-        ]
+        field_of(self.jones, self.x, self.y)
     }
 
     /// Intensity |J_x|² + |J_y|² (the trace of the coherence matrix).

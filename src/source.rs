@@ -64,13 +64,24 @@ pub struct Channel {
 impl Channel {
     /// The unit field direction of this channel for a ray leaving along unit `dir`.
     pub fn field_direction(&self, dir: DVec3) -> DVec3 {
-        let r = self.reference - self.reference.dot(dir) * dir;
-        let e_ref = if r.length() > 1e-9 {
-            r.normalize()
-        } else {
-            dir.any_orthonormal_vector()
-        };
+        self.field_direction_from(field_reference(self.reference, dir), dir)
+    }
+
+    /// [`Channel::field_direction`] from `e_ref = field_reference(self.reference, dir)` (one
+    /// evaluation serves every channel with the same reference).
+    pub fn field_direction_from(&self, e_ref: DVec3, dir: DVec3) -> DVec3 {
         self.angle_rad.cos() * e_ref + self.angle_rad.sin() * dir.cross(e_ref)
+    }
+}
+
+/// The unit field direction of angle 0 for a ray leaving along unit `dir`: `reference`
+/// projected perpendicular to `dir` (an arbitrary perpendicular if they are nearly parallel).
+pub fn field_reference(reference: DVec3, dir: DVec3) -> DVec3 {
+    let r = reference - reference.dot(dir) * dir;
+    if r.length() > 1e-9 {
+        r.normalize()
+    } else {
+        dir.any_orthonormal_vector()
     }
 }
 

@@ -4,13 +4,15 @@
 
 use crate::accumulate::{Accumulator, Contribution};
 use crate::fidelity::{Fidelity, SceneNeeds};
-use crate::interaction::{CoefficientModel, InterfaceHit, interact_along};
+use crate::interaction::{
+    CoefficientModel, InterfaceHit, JonesFrame, interact_along, interact_along_shared,
+};
 use crate::path::{
     self, EnumerationLimits, EventKind, PathError, Sequence, SolveOptions, SolvedPath, Target,
 };
 use crate::ray::{INCOHERENT, LedgerEntry, Ray};
 use crate::scene::{Scene, SceneOptics};
-use crate::source::Channel;
+use crate::source::{Channel, field_reference};
 use glam::DVec3;
 use num_complex::Complex64;
 use std::sync::Arc;
@@ -92,42 +94,66 @@ pub struct Failure {
     pub error: PathError,
 }
 
-/// Carry a channel's ray along a solved path through the real interactions.
-pub fn propagate(
-    scene: &Scene,
+/// A channel's ray at the launch point of a solved path (no ledger entries yet), given the
+/// launch direction normalized, `unit = path.dirs[0].normalize()`, and the channel's field
+/// reference `e_ref = field_reference(channel.reference, path.dirs[0])`.
+fn launch_ray_with(
     optics: &SceneOptics,
     channel: &Channel,
     coherence_length_m: f64,
     path: &SolvedPath,
-    target: &Target,
-    model: CoefficientModel,
+    unit: DVec3,
+    e_ref: DVec3,
 ) -> Ray {
     let d0 = path.dirs[0];
-    let mut ray = Ray::linear(
+    let mut ray = Ray::linear_unit(
         path.points[0],
-        d0,
-        channel.field_direction(d0),
+        unit,
+        channel.field_direction_from(e_ref, d0),
         (channel.intensity * path.spreading).sqrt(),
         optics.lambda_m,
         optics.ambient_index,
     );
     ray.coherence_id = channel.coherence_id;
     ray.coherence_length_m = coherence_length_m;
-    // Per event a path, an interaction and perhaps a coherence loss; then the last path.
-    ray.ledger.entries.reserve(3 * path.sequence.len() + 2);
-    for (k, ev) in path.sequence.iter().enumerate() {
-        let surf = &scene.surfaces[ev.surface];
-        let hit = InterfaceHit {
-            surface: ev.surface,
-            point: path.points[k + 1],
-            normal: surf.plane.normal,
-            optics: optics.surfaces[ev.surface]
-                .expect("solved paths only meet non-opaque surfaces"),
-            coherence: surf.coherence(),
-        };
-        ray = interact_along(ray, &hit, model, ev.kind == EventKind::Reflect)
-            .expect("solved paths only refract where a refracted ray exists");
+    ray
+}
+
+/// A channel's ray at the launch point of a solved path (no ledger entries yet).
+fn launch_ray(
+    optics: &SceneOptics,
+    channel: &Channel,
+    coherence_length_m: f64,
+    path: &SolvedPath,
+) -> Ray {
+    let d0 = path.dirs[0];
+    let e_ref = field_reference(channel.reference, d0);
+    launch_ray_with(
+        optics,
+        channel,
+        coherence_length_m,
+        path,
+        d0.normalize(),
+        e_ref,
+    )
+}
+
+/// The interface met at event `k` of a solved path.
+fn hit_at(scene: &Scene, optics: &SceneOptics, path: &SolvedPath, k: usize) -> InterfaceHit {
+    let ev = path.sequence[k];
+    let surf = &scene.surfaces[ev.surface];
+    InterfaceHit {
+        surface: ev.surface,
+        point: path.points[k + 1],
+        normal: surf.plane.normal,
+        optics: optics.surfaces[ev.surface].expect("solved paths only meet non-opaque surfaces"),
+        coherence: surf.coherence(),
     }
+}
+
+/// The last leg of a ray after its last event: to the target point, or to the far-field
+/// wavefront; then the paper's coherence-length rule.
+fn end_ray(ray: &mut Ray, target: &Target, coherence_length_m: f64) {
     match target {
         Target::Point(p) => ray.advance_to(*p),
         Target::Direction { reference, .. } => {
@@ -148,7 +174,118 @@ pub fn propagate(
             .entries
             .push(LedgerEntry::CoherenceLost { surface: None });
     }
+}
+
+/// Per event a path, an interaction and perhaps a coherence loss; then the last path and
+/// perhaps the coherence-length loss.
+fn ledger_capacity(path: &SolvedPath) -> usize {
+    3 * path.sequence.len() + 2
+}
+
+/// Carry a channel's ray along a solved path through the real interactions.
+pub fn propagate(
+    scene: &Scene,
+    optics: &SceneOptics,
+    channel: &Channel,
+    coherence_length_m: f64,
+    path: &SolvedPath,
+    target: &Target,
+    model: CoefficientModel,
+) -> Ray {
+    let mut ray = launch_ray(optics, channel, coherence_length_m, path);
+    ray.ledger.entries.reserve(ledger_capacity(path));
+    for (k, ev) in path.sequence.iter().enumerate() {
+        let hit = hit_at(scene, optics, path, k);
+        ray = interact_along(ray, &hit, model, ev.kind == EventKind::Reflect)
+            .expect("solved paths only refract where a refracted ray exists");
+    }
+    end_ray(&mut ray, target, coherence_length_m);
     ray
+}
+
+/// The most channels [`propagate_channels`] carries in one pass (a source has one or two).
+const SHARED_CHANNELS: usize = 4;
+
+/// [`propagate`] for every channel of a source along one path, in one pass: the channels differ
+/// only in polarization, so each interaction's geometry, coefficients and ledger entry are
+/// computed once ([`interact_along_shared`]). `emit(k, ray)` receives channel k's ray, in
+/// order; each is bitwise the ray [`propagate`] gives that channel.
+#[allow(clippy::too_many_arguments)]
+pub fn propagate_channels(
+    scene: &Scene,
+    optics: &SceneOptics,
+    channels: &[Channel],
+    coherence_length_m: f64,
+    path: &SolvedPath,
+    target: &Target,
+    model: CoefficientModel,
+    mut emit: impl FnMut(usize, Ray),
+) {
+    let Some((first, rest)) = channels.split_first() else {
+        return;
+    };
+    // The rays share their coherence id's fate only if all start coherent or all incoherent.
+    let incoherent = first.coherence_id == INCOHERENT;
+    if channels.len() > SHARED_CHANNELS
+        || rest
+            .iter()
+            .any(|c| (c.coherence_id == INCOHERENT) != incoherent)
+    {
+        for (k, ch) in channels.iter().enumerate() {
+            emit(
+                k,
+                propagate(scene, optics, ch, coherence_length_m, path, target, model),
+            );
+        }
+        return;
+    }
+    // The launch direction and the field reference are shared too (bit for bit: one
+    // reference gives one projection).
+    let d0 = path.dirs[0];
+    let unit = d0.normalize();
+    let e_ref = field_reference(first.reference, d0);
+    let launch = |ch: &Channel| {
+        let same = ch.reference.to_array().map(f64::to_bits)
+            == first.reference.to_array().map(f64::to_bits);
+        let e = if same {
+            e_ref
+        } else {
+            field_reference(ch.reference, d0)
+        };
+        launch_ray_with(optics, ch, coherence_length_m, path, unit, e)
+    };
+    let mut lead = launch(first);
+    lead.ledger.entries.reserve(ledger_capacity(path));
+    let mut frames = [JonesFrame::default(); SHARED_CHANNELS];
+    for (f, ch) in frames[1..].iter_mut().zip(rest) {
+        *f = JonesFrame::of(&launch(ch));
+    }
+    let others = &mut frames[1..channels.len()];
+    for (k, ev) in path.sequence.iter().enumerate() {
+        let hit = hit_at(scene, optics, path, k);
+        let ok = interact_along_shared(
+            &mut lead,
+            others,
+            &hit,
+            model,
+            ev.kind == EventKind::Reflect,
+        );
+        assert!(ok, "solved paths only refract where a refracted ray exists");
+    }
+    end_ray(&mut lead, target, coherence_length_m);
+    frames[0] = JonesFrame::of(&lead);
+    let lost = lead.coherence_id == INCOHERENT;
+    let mut lead = Some(lead);
+    for (k, ch) in channels.iter().enumerate() {
+        let mut ray = if k + 1 == channels.len() {
+            lead.take().expect("the lead ray is emitted last")
+        } else {
+            lead.clone().expect("the lead ray is emitted last")
+        };
+        frames[k].apply_to(&mut ray);
+        ray.coherence_id = if lost { INCOHERENT } else { ch.coherence_id };
+        emit(k, ray);
+    }
 }
 
 /// Every ray reaching `target`, and every candidate sequence that did not.
@@ -201,15 +338,32 @@ pub fn arrivals_with(
                     continue;
                 }
             };
-            for ch in &channels {
-                let ray =
-                    |model| propagate(scene, optics, ch, src.coherence_length_m, &p, target, model);
+            let first = found.len();
+            let along = |model, emit: &mut dyn FnMut(usize, Ray)| {
+                let coherence_length_m = src.coherence_length_m;
+                propagate_channels(
+                    scene,
+                    optics,
+                    &channels,
+                    coherence_length_m,
+                    &p,
+                    target,
+                    model,
+                    emit,
+                )
+            };
+            along(CoefficientModel::Vector, &mut |k, vector| {
                 found.push(Arrival {
                     source: si,
-                    channel: *ch,
+                    channel: channels[k],
                     path: Arc::clone(&p),
-                    vector: ray(CoefficientModel::Vector),
-                    paper: paper_rules.then(|| ray(CoefficientModel::PaperRules)),
+                    vector,
+                    paper: None,
+                })
+            });
+            if paper_rules {
+                along(CoefficientModel::PaperRules, &mut |k, ray| {
+                    found[first + k].paper = Some(ray)
                 });
             }
         }

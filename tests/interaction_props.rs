@@ -12,7 +12,8 @@ mod common;
 use common::*;
 use fringe::fresnel::s_direction;
 use fringe::interaction::{
-    CoefficientModel, InterfaceHit, SurfaceOptics, interact, interact_along,
+    CoefficientModel, InterfaceHit, JonesFrame, SurfaceOptics, interact, interact_along,
+    interact_along_shared,
 };
 use fringe::material::CoherenceRules;
 use fringe::ray::{INCOHERENT, LedgerEntry, PhaseLedger, Ray};
@@ -302,6 +303,53 @@ proptest! {
         };
         let err = (total - i0).abs();
         prop_assert!(err <= 1e-12 * i0, "I_R + ratio·I_T ({model:?}): actual {total:e}, expected {i0:e}, err {err:e}");
+    }
+
+    /// `interact_along_shared` (the render's one pass over the channels of a path) leaves the lead
+    /// ray and every other ray bitwise as `interact_along` leaves each on its own: for every
+    /// optics, model, branch and coherence rule, and at exactly normal incidence (θ = 0 is drawn
+    /// deliberately, and tilts of 1e-15…1e-9 rad straddle the 1e-12 threshold of `s_direction`),
+    /// where each ray's own X picks its s, so the rays' frames differ.
+    #[test]
+    fn shared_interaction_equals_one_ray_at_a_time(
+        (n1, n2) in index_pair(), inc in incidence(), tilt in prop_oneof![Just(0.0), 1e-15..1e-9f64],
+        psis in proptest::array::uniform3(0.0..TAU),
+        jones in proptest::array::uniform3((complex_amplitude(), complex_amplitude())),
+        optics_kind in 0..3usize, reflectance in 0.05..0.95f64, reflect in any::<bool>(),
+        rk in any::<bool>(), tk in any::<bool>(), paper in any::<bool>(), id in 0u64..3,
+    ) {
+        prop_assume!(inc.d_i.dot(inc.n_o) < 0.0); // incident side defined (see above)
+        let (t1, _) = tangent_basis(inc.n_o);
+        let d_i = (inc.d_i + tilt * t1).normalize();
+        let rules = CoherenceRules { reflected_keeps: rk, refracted_keeps: tk };
+        let mut hit = hit_for(&inc, DVec3::new(0.2, 0.1, -0.3), n1, n2, inc.normal, rules);
+        hit.optics = match optics_kind {
+            0 => hit.optics,
+            1 => SurfaceOptics::IdealMirror,
+            _ => SurfaceOptics::Splitter { reflectance, n: n1 },
+        };
+        let model = if paper { CoefficientModel::PaperRules } else { CoefficientModel::Vector };
+        let rays: Vec<Ray> = (0..3)
+            .map(|k| {
+                let mut r = make_ray(DVec3::new(0.2, 0.1, -0.3) - 0.7 * d_i, d_i, psis[k], [jones[k].0, jones[k].1], n1, id);
+                r.ledger.entries.push(LedgerEntry::CoherenceLost { surface: Some(9) });
+                r
+            })
+            .collect();
+        let alone: Vec<Option<Ray>> = rays.iter().map(|r| interact_along(r.clone(), &hit, model, reflect)).collect();
+        let mut lead = rays[0].clone();
+        let mut others = [JonesFrame::of(&rays[1]), JonesFrame::of(&rays[2])];
+        let ok = interact_along_shared(&mut lead, &mut others, &hit, model, reflect);
+        prop_assert_eq!(ok, alone[0].is_some(), "a child exists (shared vs alone)");
+        if let Some(want) = &alone[0] {
+            prop_assert_eq!(format!("{lead:?}"), format!("{want:?}"), "lead ray");
+            for (k, o) in others.iter().enumerate() {
+                let want = alone[k + 1].as_ref().expect("the same child exists for every ray");
+                let mut got = lead.clone();
+                o.apply_to(&mut got);
+                prop_assert_eq!(format!("{got:?}"), format!("{want:?}"), "ray {}", k + 1);
+            }
+        }
     }
 
     /// Coherence rules (paper §3.4): a child that does not keep coherence gets id 0 (and a ledger
