@@ -156,32 +156,55 @@ fn surface_optics(
     optics.surfaces[surface].ok_or(PathError::OpaqueEvent { surface })
 }
 
-/// Trace a ray through `seq` on the unbounded planes (no extents, no blockers).
+impl Geometry {
+    /// No points yet (allocates nothing).
+    fn empty() -> Self {
+        Geometry {
+            points: Vec::new(),
+            dirs: Vec::new(),
+            indices: Vec::new(),
+            denser_reflections: 0,
+            has_tir: false,
+            refraction_factor: 1.0,
+        }
+    }
+
+    /// Forget the last trace, keeping the allocations.
+    fn clear(&mut self) {
+        self.points.clear();
+        self.dirs.clear();
+        self.indices.clear();
+        self.denser_reflections = 0;
+        self.has_tir = false;
+        self.refraction_factor = 1.0;
+    }
+
+    /// The launch point, direction and index of a trace through `events` events (with room for
+    /// the end point that point targets add).
+    fn start(&mut self, origin: DVec3, dir: DVec3, index: f64, events: usize) {
+        self.points.reserve(events + 2);
+        self.dirs.reserve(events + 2);
+        self.indices.reserve(events + 1);
+        self.points.push(origin);
+        self.dirs.push(dir);
+        self.indices.push(index);
+    }
+}
+
+/// Trace a ray through `seq` on the unbounded planes (no extents, no blockers) into `g`
+/// (cleared first; nothing is allocated when the first event already fails).
 fn trace_planes(
     scene: &Scene,
     optics: &SceneOptics,
     origin: DVec3,
     dir: DVec3,
     seq: &[Event],
-) -> Result<Geometry, PathError> {
-    let with_first = |x| {
-        // The end point is pushed after the last event for point targets.
-        let mut v = Vec::with_capacity(seq.len() + 2);
-        v.push(x);
-        v
-    };
-    let mut g = Geometry {
-        points: with_first(origin),
-        dirs: with_first(dir),
-        indices: {
-            let mut v = Vec::with_capacity(seq.len() + 1);
-            v.push(optics.ambient_index);
-            v
-        },
-        denser_reflections: 0,
-        has_tir: false,
-        refraction_factor: 1.0,
-    };
+    g: &mut Geometry,
+) -> Result<(), PathError> {
+    g.clear();
+    if seq.is_empty() {
+        g.start(origin, dir, optics.ambient_index, 0);
+    }
     let (mut o, mut d, mut n) = (origin, dir, optics.ambient_index);
     for (k, ev) in seq.iter().enumerate() {
         let surf = &scene.surfaces[ev.surface];
@@ -221,6 +244,9 @@ fn trace_planes(
                 (d_t, n2)
             }
         };
+        if k == 0 {
+            g.start(origin, dir, optics.ambient_index, seq.len());
+        }
         g.points.push(x);
         g.dirs.push(d_new);
         g.indices.push(n_new);
@@ -228,7 +254,7 @@ fn trace_planes(
         d = d_new;
         n = n_new;
     }
-    Ok(g)
+    Ok(())
 }
 
 /// How the two launch parameters map to a launch ray.
@@ -516,8 +542,6 @@ pub fn solve(
             reference_point, ..
         } => reference_point,
     };
-    let scale = scene_scale(scene, anchor, &target);
-
     // Plane wave into the far field: every launch is equivalent; trace from the reference point.
     if let (
         Emitter::PlaneWave {
@@ -527,7 +551,15 @@ pub fn solve(
         Target::Direction { dir, .. },
     ) = (emitter, target)
     {
-        let g = trace_planes(scene, optics, reference_point, direction.normalize(), seq)?;
+        let mut g = Geometry::empty();
+        trace_planes(
+            scene,
+            optics,
+            reference_point,
+            direction.normalize(),
+            seq,
+            &mut g,
+        )?;
         let d_f = *g.dirs.last().unwrap();
         let err = d_f.cross(dir.normalize()).length();
         if err > 1e-9 || d_f.dot(dir) <= 0.0 {
@@ -555,6 +587,9 @@ pub fn solve(
     // inside glass looking out at a shallow angle), steepen it toward the first event's
     // normal, halving the tangential part until the sequence can be traced.
     let mut guess_dir = guess_dir;
+    // The first trace (the guess) and, when steepening finds it, its launch model.
+    let mut g0 = Geometry::empty();
+    let mut start = None;
     // A point source and a point through parallel planes: Snell's invariant gives the launch
     // direction directly (Newton then only confirms it).
     let stack = match (emitter, target) {
@@ -576,7 +611,7 @@ pub fn solve(
             shrink *= 0.5;
             let m = LaunchModel::new(emitter, g, guess_origin);
             let (o, d) = m.launch([0.0, 0.0]);
-            match trace_planes(scene, optics, o, d, seq) {
+            match trace_planes(scene, optics, o, d, seq, &mut g0) {
                 // Steepening keeps the side of the first plane the ray heads for: these
                 // failures cannot go away.
                 Err(
@@ -585,40 +620,55 @@ pub fn solve(
                     | PathError::OpaqueEvent { .. }),
                 ) => return Err(e),
                 Err(_) => continue,
-                Ok(_) => {
+                Ok(()) => {
+                    // This launch is the start below: keep its model and trace.
                     guess_dir = g;
+                    start = Some(m);
                     break;
                 }
             }
         }
     }
-    let model = LaunchModel::new(emitter, guess_dir, guess_origin);
-    let trace = |p: [f64; 2]| {
+    let model = match start {
+        Some(m) => m,
+        None => {
+            let m = LaunchModel::new(emitter, guess_dir, guess_origin);
+            let (o, d) = m.launch([0.0, 0.0]);
+            trace_planes(scene, optics, o, d, seq, &mut g0)?;
+            m
+        }
+    };
+    let trace = |p: [f64; 2], g: &mut Geometry| {
         let (o, d) = model.launch(p);
-        trace_planes(scene, optics, o, d, seq)
+        trace_planes(scene, optics, o, d, seq, g)
     };
     let mut x = [0.0, 0.0];
-    let g0 = trace(x)?;
     let dref = match target {
         Target::Point(_) => *g0.dirs.last().unwrap(),
         Target::Direction { dir, .. } => dir.normalize(),
     };
     let f1 = dref.any_orthonormal_vector();
     let frame = (dref, f1, dref.cross(f1));
-    let res = |p: [f64; 2]| trace(p).ok().and_then(|g| residual(&g, &target, frame));
+    // Newton's trial launches reuse one scratch trace.
+    let mut scratch = Geometry::empty();
+    let res = |p: [f64; 2], g: &mut Geometry| {
+        trace(p, g).ok()?;
+        residual(g, &target, frame)
+    };
+    let scale = scene_scale(scene, anchor, &target);
     let tol = match target {
         Target::Point(_) => opts.landing_tolerance * scale,
         Target::Direction { .. } => 1e-13,
     };
     let h = model.step(scale);
-    let jacobian = |p: [f64; 2]| -> Option<[[f64; 2]; 2]> {
+    let jacobian = |p: [f64; 2], g: &mut Geometry| -> Option<[[f64; 2]; 2]> {
         let mut j = [[0.0; 2]; 2];
         for k in 0..2 {
             let mut pp = p;
             let mut pm = p;
             pp[k] += h[k];
             pm[k] -= h[k];
-            let (rp, rm) = (res(pp)?, res(pm)?);
+            let (rp, rm) = (res(pp, g)?, res(pm, g)?);
             for i in 0..2 {
                 j[i][k] = (rp[i] - rm[i]) / (2.0 * h[k]);
             }
@@ -627,10 +677,13 @@ pub fn solve(
     };
 
     let mut r = residual(&g0, &target, frame).ok_or(PathError::Behind)?;
+    let mut r_norm = norm2(r);
     let mut iterations = 0;
-    while norm2(r) > tol && iterations < opts.max_iterations {
+    while r_norm > tol && iterations < opts.max_iterations {
         iterations += 1;
-        let Some(j) = jacobian(x) else { break };
+        let Some(j) = jacobian(x, &mut scratch) else {
+            break;
+        };
         let Some(delta) = solve2(j, [-r[0], -r[1]]) else {
             break;
         };
@@ -639,10 +692,12 @@ pub fn solve(
         let mut improved = false;
         while lambda > 1e-12 {
             let xn = [x[0] + lambda * delta[0], x[1] + lambda * delta[1]];
-            if let Some(rn) = res(xn) {
-                if norm2(rn) < norm2(r) {
+            if let Some(rn) = res(xn, &mut scratch) {
+                let rn_norm = norm2(rn);
+                if rn_norm < r_norm {
                     x = xn;
                     r = rn;
+                    r_norm = rn_norm;
                     improved = true;
                     break;
                 }
@@ -653,16 +708,19 @@ pub fn solve(
             break;
         }
     }
-    let landing_error = norm2(r);
+    let landing_error = r_norm;
     if landing_error > tol.max(opts.landing_tolerance * scale) {
         return Err(PathError::NotConverged {
             landing_error_m: landing_error,
             iterations,
         });
     }
-    let mut g = if iterations == 0 { g0 } else { trace(x)? };
+    let mut g = g0;
+    if iterations > 0 {
+        trace(x, &mut g)?;
+    }
     let spreading = if opts.spreading {
-        let j = jacobian(x).ok_or(PathError::NotConverged {
+        let j = jacobian(x, &mut scratch).ok_or(PathError::NotConverged {
             landing_error_m: landing_error,
             iterations,
         })?;
