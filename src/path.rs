@@ -15,8 +15,9 @@
 //! `S² = (n_src/n_P)·Π_refractions(n2 cos θt/(n1 cos θi))·(launch measure)/(dA⊥)`; for a point
 //! source in a homogeneous medium this is exactly 1/r².
 
+use crate::geometry::Extent;
 use crate::interaction::{InterfaceHit, SurfaceOptics, indices_for};
-use crate::scene::{Scene, SceneOptics};
+use crate::scene::{Scene, SceneOptics, SurfaceKind};
 use crate::source::Emitter;
 use crate::{fresnel, interaction};
 use glam::DVec3;
@@ -470,6 +471,128 @@ fn parallel_stack_launch(
     let cos0 = ((n0 - p) * (n0 + p)).sqrt() / n0;
     let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
     Some(sin0 * u + cos0 * first_up * nu)
+}
+
+/// Whether no path from a point `source` through `seq` to the point `target` can exist, decided
+/// from the geometry alone without solving; `false` when in doubt. When it returns true,
+/// [`solve`] fails too (with an error of its own, which this test does not name): callers that
+/// only need the paths that exist skip the solve. Two cases are decided:
+///
+/// * the empty sequence: the straight segment crosses a surface that stops or deflects it
+///   there ([`Surface::surely_stops`](crate::scene::Surface::surely_stops));
+/// * a sequence whose event planes are all parallel (normal ν): every segment's direction along
+///   ν is fixed by the sequence (reflections flip it, refractions keep it), so a segment that
+///   must run against the order of its end heights is missed, and a segment that crosses an
+///   unbounded interface parallel to the events (other than its own end surfaces) is blocked,
+///   whatever the launch.
+///
+/// Heights and crossings must clear their limits by 1e-9 × (1 m + the scene size) — a thousand
+/// times the solver's own margins (`finish`'s 1e-12 (1 + t)) and far above rounding and
+/// landing errors — so a true here never depends on rounding.
+pub fn cannot_reach(scene: &Scene, emitter: Emitter, seq: &[Event], target: &Target) -> bool {
+    let (Emitter::Point { position: source }, Target::Point(p)) = (emitter, *target) else {
+        return false;
+    };
+    match seq.first() {
+        None => straight_segment_stopped(scene, source, p),
+        Some(first) => stack_cannot_reach(scene, seq, source, p, first.surface),
+    }
+}
+
+/// An upper bound of |v| without a square root (|v| ≤ √3 max |v_i|).
+fn length_bound(v: DVec3) -> f64 {
+    1.7320508075688772 * v.abs().max_element()
+}
+
+/// [`cannot_reach`] for the direct path from `a` to `b`.
+fn straight_segment_stopped(scene: &Scene, a: DVec3, b: DVec3) -> bool {
+    // The solved launch lands within 1e-12 × scene scale of b (`scene_scale`), so crossing
+    // points move by at most that much: bound the scale from above.
+    let scale = scene
+        .surfaces
+        .iter()
+        .map(|s| length_bound(s.plane.point - a))
+        .fold(length_bound(b - a), f64::max);
+    let margin = 1e-9 * (1.0 + scale);
+    let length = length_bound(b - a);
+    scene.surfaces.iter().any(|surf| {
+        let (sa, sb) = (surf.plane.signed_distance(a), surf.plane.signed_distance(b));
+        // Both ends clearly on opposite sides (then the segment is longer than 2 × margin).
+        if !((sa > margin && sb < -margin) || (sa < -margin && sb > margin)) {
+            return false;
+        }
+        let x = a + (sa / (sa - sb)) * (b - a);
+        // An end moved by δ moves the crossing by at most δ (1 + |b − a|/|sa − sb|).
+        surf.surely_stops(x, margin * (1.0 + length / (sa - sb).abs()))
+    })
+}
+
+/// [`cannot_reach`] for a sequence on parallel planes.
+fn stack_cannot_reach(
+    scene: &Scene,
+    seq: &[Event],
+    source: DVec3,
+    target: DVec3,
+    first: usize,
+) -> bool {
+    // Longer sequences are left to the solver.
+    const MAX_HEIGHTS: usize = 16;
+    if seq.len() + 2 > MAX_HEIGHTS {
+        return false;
+    }
+    let nu = scene.surfaces[first].plane.normal;
+    let parallel = |n: DVec3| n == nu || n.cross(nu).length_squared() <= 1e-30;
+    // Heights along ν of the source (k = 0), event plane k (1..=len) and the target.
+    let mut heights = [0.0; MAX_HEIGHTS];
+    heights[0] = source.dot(nu);
+    for (k, ev) in seq.iter().enumerate() {
+        let plane = &scene.surfaces[ev.surface].plane;
+        if !parallel(plane.normal) {
+            return false;
+        }
+        heights[k + 1] = plane.point.dot(nu);
+    }
+    heights[seq.len() + 1] = target.dot(nu);
+    let z = &heights[..seq.len() + 2];
+    // Every segment runs at most its height plus the lateral distance (all segments run the
+    // same way sideways in the plane of incidence): the scene size bounds their lengths.
+    let size =
+        length_bound(target - source) + z.windows(2).map(|w| (w[1] - w[0]).abs()).sum::<f64>();
+    let margin = 1e-9 * (1.0 + size);
+    // The first segment runs toward the first plane; any launch that reaches it does.
+    let dz0 = z[1] - z[0];
+    if dz0.abs() <= margin {
+        return false;
+    }
+    let mut up = dz0.signum();
+    for k in 0..=seq.len() {
+        let (za, zb) = (z[k], z[k + 1]);
+        if (zb - za) * up < -margin {
+            // Missed (or the target behind): this segment runs away from its end.
+            return true;
+        }
+        let ends = |j: usize| {
+            (k >= 1 && seq[k - 1].surface == j) || (k < seq.len() && seq[k].surface == j)
+        };
+        let (lo, hi) = (za.min(zb) + margin, za.max(zb) - margin);
+        let crossed = scene.surfaces.iter().enumerate().any(|(j, surf)| {
+            matches!(surf.extent, Extent::Unbounded)
+                && !matches!(surf.kind, SurfaceKind::Opaque { .. })
+                && !ends(j)
+                && {
+                    let zj = surf.plane.point.dot(nu);
+                    zj > lo && zj < hi
+                }
+                && parallel(surf.plane.normal)
+        });
+        if crossed {
+            return true;
+        }
+        if seq.get(k).is_some_and(|ev| ev.kind == EventKind::Reflect) {
+            up = -up;
+        }
+    }
+    false
 }
 
 /// Image-method initial guess: the target mirrored through every reflection, in reverse order.

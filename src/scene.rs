@@ -65,6 +65,41 @@ impl Surface {
         !matches!(self.kind, SurfaceKind::Opaque { .. }) && self.extent.contains(&self.plane, x)
     }
 
+    /// Whether every point of the plane within `margin` (m) of the in-plane point `x` stops a
+    /// ray ([`Surface::blocks`]) or deflects it ([`Surface::interacts`]): a verdict that holds
+    /// for `x` computed to within `margin`.
+    pub fn surely_stops(&self, x: DVec3, margin: f64) -> bool {
+        // Inside (or, with `outside`, outside) a rectangle by more than the margin, in (u, v)
+        // coordinates that move by at most |u| resp. |v| per metre.
+        let beyond = |rect: &Rect, uv: [f64; 2], m: [f64; 2], outside: bool| {
+            let du = (uv[0] - rect.center_uv[0]).abs();
+            let dv = (uv[1] - rect.center_uv[1]).abs();
+            if outside {
+                du > rect.half_width_m + m[0] || dv > rect.half_height_m + m[1]
+            } else {
+                du <= rect.half_width_m - m[0] && dv <= rect.half_height_m - m[1]
+            }
+        };
+        let (u, v) = match self.extent {
+            Extent::Rect { u, v, .. } => (u, v),
+            Extent::Unbounded => match &self.kind {
+                SurfaceKind::Opaque { .. } => self.plane.axes(DVec3::X),
+                _ => return true,
+            },
+        };
+        let uv = Extent::uv(u, v, &self.plane, x);
+        let m = [margin * u.length(), margin * v.length()];
+        if let Extent::Rect { rect, .. } = &self.extent {
+            if !beyond(rect, uv, m, false) {
+                return false;
+            }
+        }
+        match &self.kind {
+            SurfaceKind::Opaque { apertures } => apertures.iter().all(|a| beyond(a, uv, m, true)),
+            _ => true,
+        }
+    }
+
     /// The surface's optics at vacuum wavelength `lambda_m`, `None` for opaque surfaces.
     pub fn optics(&self, lambda_m: f64) -> Result<Option<SurfaceOptics>, IndexError> {
         Ok(match &self.kind {

@@ -325,6 +325,10 @@ pub fn arrivals_with(
     for (si, src) in scene.sources.iter().enumerate() {
         let channels = src.channels();
         for seq in &plan.sequences[si] {
+            // Without a failure list the reason is not needed: skip what surely fails.
+            if failed.is_none() && path::cannot_reach(scene, src.emitter, seq, target) {
+                continue;
+            }
             let p = match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
                 Ok(p) => Arc::new(p),
                 Err(error) => {
