@@ -893,11 +893,16 @@ fn finish(
     } else {
         g.points.len() - 1
     };
+    // Σ n_i L_i over the finite segments, each length measured once, summed in order from
+    // −0.0 exactly as `Iterator::sum` does.
+    let mut optical_path_m = -0.0;
     for i in 0..n_seg {
         let a = g.points[i];
         let d = g.dirs[i];
         let len = if i + 1 < g.points.len() {
-            (g.points[i + 1] - a).length()
+            let len = (g.points[i + 1] - a).length();
+            optical_path_m += g.indices[i] * len;
+            len
         } else {
             f64::INFINITY
         };
@@ -922,9 +927,6 @@ fn finish(
             }
         }
     }
-    let mut optical_path_m: f64 = (0..g.points.len() - 1)
-        .map(|i| g.indices[i] * (g.points[i + 1] - g.points[i]).length())
-        .sum();
     if let Target::Direction { reference, .. } = target {
         // To the far-field wavefront through `reference`: −n·d·(X_exit − reference).
         let (x, d, n) = (
