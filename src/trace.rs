@@ -221,11 +221,12 @@ pub fn propagate_channels(
     model: CoefficientModel,
     mut emit: impl FnMut(usize, Ray),
 ) {
-    let Some((first, rest)) = channels.split_first() else {
+    // The last channel's ray is carried in full; the others' frames ride along.
+    let Some((last, rest)) = channels.split_last() else {
         return;
     };
     // The rays share their coherence id's fate only if all start coherent or all incoherent.
-    let incoherent = first.coherence_id == INCOHERENT;
+    let incoherent = last.coherence_id == INCOHERENT;
     if channels.len() > SHARED_CHANNELS
         || rest
             .iter()
@@ -243,10 +244,10 @@ pub fn propagate_channels(
     // reference gives one projection).
     let d0 = path.dirs[0];
     let unit = d0.normalize();
-    let e_ref = field_reference(first.reference, d0);
+    let e_ref = field_reference(last.reference, d0);
     let launch = |ch: &Channel| {
         let same = ch.reference.to_array().map(f64::to_bits)
-            == first.reference.to_array().map(f64::to_bits);
+            == last.reference.to_array().map(f64::to_bits);
         let e = if same {
             e_ref
         } else {
@@ -254,13 +255,13 @@ pub fn propagate_channels(
         };
         launch_ray_with(optics, ch, coherence_length_m, path, unit, e)
     };
-    let mut lead = launch(first);
+    let mut lead = launch(last);
     lead.ledger.entries.reserve(ledger_capacity(path));
-    let mut frames = [JonesFrame::default(); SHARED_CHANNELS];
-    for (f, ch) in frames[1..].iter_mut().zip(rest) {
+    let mut frames = [JonesFrame::default(); SHARED_CHANNELS - 1];
+    let others = &mut frames[..rest.len()];
+    for (f, ch) in others.iter_mut().zip(rest) {
         *f = JonesFrame::of(&launch(ch));
     }
-    let others = &mut frames[1..channels.len()];
     for (k, ev) in path.sequence.iter().enumerate() {
         let hit = hit_at(scene, optics, path, k);
         let ok = interact_along_shared(
@@ -273,19 +274,15 @@ pub fn propagate_channels(
         assert!(ok, "solved paths only refract where a refracted ray exists");
     }
     end_ray(&mut lead, target, coherence_length_m);
-    frames[0] = JonesFrame::of(&lead);
+    // The others differ from the lead only in frame and coherence id.
     let lost = lead.coherence_id == INCOHERENT;
-    let mut lead = Some(lead);
-    for (k, ch) in channels.iter().enumerate() {
-        let mut ray = if k + 1 == channels.len() {
-            lead.take().expect("the lead ray is emitted last")
-        } else {
-            lead.clone().expect("the lead ray is emitted last")
-        };
-        frames[k].apply_to(&mut ray);
+    for (k, (f, ch)) in others.iter().zip(rest).enumerate() {
+        let mut ray = lead.clone();
+        f.apply_to(&mut ray);
         ray.coherence_id = if lost { INCOHERENT } else { ch.coherence_id };
         emit(k, ray);
     }
+    emit(rest.len(), lead);
 }
 
 /// Every ray reaching `target`, and every candidate sequence that did not.
