@@ -564,6 +564,24 @@ fn stack_cannot_reach(
     if dz0.abs() <= margin {
         return false;
     }
+    // The unbounded interfaces parallel to the events (surface, height): a segment strictly
+    // between two of its own ends' heights that crosses one is blocked.
+    const MAX_PLANES: usize = 16;
+    let mut planes = [(0, 0.0); MAX_PLANES];
+    let mut n_planes = 0;
+    for (j, surf) in scene.surfaces.iter().enumerate() {
+        if matches!(surf.extent, Extent::Unbounded)
+            && !matches!(surf.kind, SurfaceKind::Opaque { .. })
+            && parallel(surf.plane.normal)
+        {
+            if n_planes == MAX_PLANES {
+                break; // the rest are not looked at: fewer claims, never a wrong one
+            }
+            planes[n_planes] = (j, surf.plane.point.dot(nu));
+            n_planes += 1;
+        }
+    }
+    let planes = &planes[..n_planes];
     let mut up = dz0.signum();
     for k in 0..=seq.len() {
         let (za, zb) = (z[k], z[k + 1]);
@@ -575,17 +593,7 @@ fn stack_cannot_reach(
             (k >= 1 && seq[k - 1].surface == j) || (k < seq.len() && seq[k].surface == j)
         };
         let (lo, hi) = (za.min(zb) + margin, za.max(zb) - margin);
-        let crossed = scene.surfaces.iter().enumerate().any(|(j, surf)| {
-            matches!(surf.extent, Extent::Unbounded)
-                && !matches!(surf.kind, SurfaceKind::Opaque { .. })
-                && !ends(j)
-                && {
-                    let zj = surf.plane.point.dot(nu);
-                    zj > lo && zj < hi
-                }
-                && parallel(surf.plane.normal)
-        });
-        if crossed {
+        if planes.iter().any(|&(j, zj)| zj > lo && zj < hi && !ends(j)) {
             return true;
         }
         if seq.get(k).is_some_and(|ev| ev.kind == EventKind::Reflect) {

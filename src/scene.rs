@@ -70,7 +70,7 @@ impl Surface {
     /// for `x` computed to within `margin`.
     pub fn surely_stops(&self, x: DVec3, margin: f64) -> bool {
         // Inside (or, with `outside`, outside) a rectangle by more than the margin, in (u, v)
-        // coordinates that move by at most |u| resp. |v| per metre.
+        // coordinates that move by at most |u| resp. |v| per metre of x.
         let beyond = |rect: &Rect, uv: [f64; 2], m: [f64; 2], outside: bool| {
             let du = (uv[0] - rect.center_uv[0]).abs();
             let dv = (uv[1] - rect.center_uv[1]).abs();
@@ -88,7 +88,9 @@ impl Surface {
             },
         };
         let uv = Extent::uv(u, v, &self.plane, x);
-        let m = [margin * u.length(), margin * v.length()];
+        // |w| ≤ √3 max |w_i| bounds the stretch without a square root (u, v are unit in practice).
+        let stretch = |w: DVec3| 1.7320508075688772 * w.abs().max_element();
+        let m = [margin * stretch(u), margin * stretch(v)];
         if let Extent::Rect { rect, .. } = &self.extent {
             if !beyond(rect, uv, m, false) {
                 return false;
