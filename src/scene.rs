@@ -91,10 +91,10 @@ impl Surface {
         // |w| ≤ √3 max |w_i| bounds the stretch without a square root (u, v are unit in practice).
         let stretch = |w: DVec3| 1.7320508075688772 * w.abs().max_element();
         let m = [margin * stretch(u), margin * stretch(v)];
-        if let Extent::Rect { rect, .. } = &self.extent {
-            if !beyond(rect, uv, m, false) {
-                return false;
-            }
+        if let Extent::Rect { rect, .. } = &self.extent
+            && !beyond(rect, uv, m, false)
+        {
+            return false;
         }
         match &self.kind {
             SurfaceKind::Opaque { apertures } => apertures.iter().all(|a| beyond(a, uv, m, true)),

@@ -308,7 +308,10 @@ pub fn arrivals(
 
 /// Every ray reaching `target` ([`arrivals`]), propagated under the paper's rules too only
 /// when `paper_rules` (a render that shows no `paper_rules` picture skips that half of the
-/// work), with the failed sequences pushed to `failed` when given.
+/// work), with the failed sequences pushed to `failed` when given. Without a failure list,
+/// sequences that [`path::cannot_reach`] rules out are not solved at all (the arrivals are the
+/// same; only the reasons would be missing). The channels of a source are carried along each
+/// path together ([`propagate_channels`]).
 pub fn arrivals_with(
     scene: &Scene,
     optics: &SceneOptics,
