@@ -568,12 +568,15 @@ fn regressions() {
             continue; // not UTF-8: load() rejects it before parse()
         };
         match load::parse(Path::new(file), &text) {
-            Ok(_) => {
-                // Only errors found by running the tracer are allowed to pass parse().
-                assert_eq!(
-                    e["json_path"], "$.probe",
-                    "{file} is accepted by the parser"
-                );
+            Ok(case) => {
+                // Errors found by the work preflight or by tracing pass parse(); `fringe check`
+                // finds them before anything is written, and so must this.
+                let err = fringe::case::run::preflight(&case)
+                    .and_then(|_| fringe::case::run::run_with(&case, false).map(|_| 0.0))
+                    .expect_err(&format!(
+                        "{file} is accepted by the parser, preflight and run"
+                    ));
+                assert_eq!(err.json_path, e["json_path"].as_str().unwrap(), "{file}");
             }
             Err(err) => assert_eq!(err.json_path, e["json_path"].as_str().unwrap(), "{file}"),
         }
