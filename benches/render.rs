@@ -34,7 +34,7 @@ fn bench(c: &mut Criterion) {
     let mut group = c.benchmark_group("picture");
     group
         .sample_size(10)
-        .measurement_time(Duration::from_secs(10));
+        .measurement_time(Duration::from_secs(15));
     let case = load::load(Path::new("figures/plate_amplitude_division.json")).expect("figure");
     let (w, h) = (300, 300);
     let req = Request {

@@ -47,10 +47,9 @@ pub fn available_bytes() -> Result<Option<u64>, String> {
     if let (Some(max), Some(cur)) = (
         read("/sys/fs/cgroup/memory.max"),
         read("/sys/fs/cgroup/memory.current"),
-    ) {
-        if let Some(b) = cgroup_room(&max, &cur) {
-            limits.push(b);
-        }
+    ) && let Some(b) = cgroup_room(&max, &cur)
+    {
+        limits.push(b);
     }
     Ok(limits.into_iter().min())
 }
