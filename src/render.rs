@@ -29,8 +29,10 @@
 //! # Speed
 //!
 //! Profiled with `perf record` on `fringe render plate_amplitude_division --size 600x600
-//! --samples 81`: the path solver and the ray propagation dominate; see README "Measured
-//! numbers" for the timings.
+//! --samples 81`: after the 1-D Snell start of the path solver, the skipping of sequences that
+//! cannot reach a pixel, the shared propagation of a source's channels and the beat terms, the
+//! profile is flat (solve, reachability test, beats and propagation each 9–15%); README
+//! "Measured numbers" has the timings.
 
 use crate::accumulate::Accumulator;
 use crate::beats::{Beats, SpectralContribution};
