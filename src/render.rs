@@ -236,20 +236,9 @@ pub fn trace_settings(case: &Case, built: &Built, lambda_m: f64) -> Result<Trace
     crate::case::run::trace_settings(case, built, lambda_m).map_err(|e| e.to_string())
 }
 
-/// The arrivals a one-sided screen point records, with `plan`'s sequences.
+/// The arrivals a one-sided screen point records, with `plan`'s sequences; the rays under the
+/// paper's rules are traced only when `paper_rules`.
 pub fn arrivals_at(
-    scene: &Scene,
-    optics: &SceneOptics,
-    plan: &Plan,
-    point: DVec3,
-    observer: &Observer,
-    settings: &TraceSettings,
-) -> Vec<Arrival> {
-    recorded_arrivals(scene, optics, plan, point, observer, settings, true)
-}
-
-/// [`arrivals_at`], with the paper's-rules rays only when `paper_rules`.
-fn recorded_arrivals(
     scene: &Scene,
     optics: &SceneOptics,
     plan: &Plan,
@@ -356,7 +345,7 @@ impl Context<'_> {
         s.beats.resize_with(self.shadings.len(), Beats::default);
         if !self.dispersive {
             let optics = &self.optics[0];
-            let arr = recorded_arrivals(
+            let arr = arrivals_at(
                 scene,
                 optics,
                 &self.plans[0],
@@ -380,7 +369,7 @@ impl Context<'_> {
             let mut paths = 0;
             for (j, &(lambda, w)) in self.samples.iter().enumerate() {
                 let optics = &self.optics[j];
-                let arr = recorded_arrivals(
+                let arr = arrivals_at(
                     scene,
                     optics,
                     &self.plans[j],

@@ -232,9 +232,9 @@ fn path_offsets(path_m: f64) -> Vec<f64> {
         .collect()
 }
 
-/// fringe's traced path difference for two coherent point sources on the x axis at 0 and −Δs
-/// and the point (s, 0, 0): the exact difference is Δs (collinear).
-fn traced_path_difference(path_m: f64, offset_m: f64) -> f64 {
+/// Two coherent, linearly polarized unit point sources in vacuum on the x axis, at 0 and at
+/// −`offset_m`: at a point (s, 0, 0) their optical paths differ by exactly `offset_m`.
+pub fn collinear_sources(offset_m: f64) -> Scene {
     let mut scene = Scene::new(Medium::vacuum());
     for (k, x) in [0.0, offset_m].into_iter().enumerate() {
         scene.sources.push(Source {
@@ -251,6 +251,13 @@ fn traced_path_difference(path_m: f64, offset_m: f64) -> f64 {
             coherence_length_m: f64::INFINITY,
         });
     }
+    scene
+}
+
+/// fringe's traced path difference for [`collinear_sources`] at the point (s, 0, 0): the exact
+/// difference is Δs (collinear).
+fn traced_path_difference(path_m: f64, offset_m: f64) -> f64 {
+    let scene = collinear_sources(offset_m);
     let p = DVec3::new(path_m, 0.0, 0.0);
     let Ok(optics) = scene.optics(WAVELENGTH_M) else {
         return f64::NAN;

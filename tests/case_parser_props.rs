@@ -12,6 +12,8 @@
 //! case_parser_props` for a long run. Crashing inputs found this way are kept in
 //! tests/bad_cases/.
 
+#[path = "support/library.rs"]
+mod library;
 #[path = "support/schema.rs"]
 mod schema;
 
@@ -44,16 +46,7 @@ fn config() -> ProptestConfig {
 fn library() -> &'static Vec<(Value, String)> {
     static LIB: OnceLock<Vec<(Value, String)>> = OnceLock::new();
     LIB.get_or_init(|| {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(root().join("cases"))
-            .unwrap()
-            .map(|e| e.unwrap().path())
-            .filter(|p| {
-                p.extension().is_some_and(|x| x == "json")
-                    && p.file_name().is_some_and(|n| n != "schema.json")
-            })
-            .collect();
-        files.sort();
-        files
+        library::case_files()
             .iter()
             .map(|p| {
                 let t = std::fs::read_to_string(p).unwrap();

@@ -17,18 +17,11 @@ use proptest::prelude::*;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
+#[path = "support/library.rs"]
+mod support_library;
+
 fn library() -> Vec<(String, Value)> {
-    let root = PathBuf::from(env!("CARGO_MANIFEST_DIR"));
-    let mut files: Vec<PathBuf> = std::fs::read_dir(root.join("cases"))
-        .unwrap()
-        .map(|e| e.unwrap().path())
-        .filter(|p| {
-            p.extension().is_some_and(|x| x == "json")
-                && p.file_name().is_some_and(|n| n != "schema.json")
-        })
-        .collect();
-    files.sort();
-    files
+    support_library::case_files()
         .iter()
         .map(|p| {
             let v = serde_json::from_str(&std::fs::read_to_string(p).unwrap()).unwrap();

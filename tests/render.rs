@@ -49,7 +49,7 @@ fn traced_at(
         position_m: p.to_array(),
         looks_toward,
     };
-    let arr = render::arrivals_at(&built.scene, &optics, &plan, p, &observer, &st);
+    let arr = render::arrivals_at(&built.scene, &optics, &plan, p, &observer, &st, true);
     trace::intensity(&arr, level)
 }
 
@@ -313,7 +313,7 @@ fn the_unpolarized_scalar_ray_follows_the_two_beam_formula_with_summed_powers() 
             let p = screen.geometry.position(col, row);
             let plan = trace::plan(&built.scene, &optics, &[p], &st.limits);
             let obs = screen.observer(p);
-            let arr = render::arrivals_at(&built.scene, &optics, &plan, p, &obs, &st);
+            let arr = render::arrivals_at(&built.scene, &optics, &plan, p, &obs, &st, true);
             assert_eq!(arr.len(), 4, "two paths × two channels at ({col}, {row})");
             let top: Vec<_> = arr.iter().filter(|a| a.path.sequence.len() == 1).collect();
             let inner: Vec<_> = arr.iter().filter(|a| a.path.sequence.len() == 3).collect();

@@ -6,10 +6,7 @@
 use fringe::analytic::plate::{Film, Pol};
 use fringe::fidelity::Fidelity;
 use fringe::fresnel::{brewster_angle, critical_angle, fresnel};
-use fringe::material::Medium;
 use fringe::path::{EnumerationLimits, Target};
-use fringe::scene::Scene;
-use fringe::source::{Emitter, Polarization, Source};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
 use proptest::prelude::*;
@@ -139,22 +136,7 @@ fn path_differences_from_1_nm_to_10_m() {
     let lambda = 550e-9;
     for distance in [1e-9f64, 1e-6, 1e-3, 1.0, 10.0] {
         let dx = 1e-7 * distance.max(1e-6); // source offset along the line of sight
-        let mut scene = Scene::new(Medium::vacuum());
-        for (k, x) in [0.0, dx].into_iter().enumerate() {
-            scene.sources.push(Source {
-                name: format!("s{k}"),
-                emitter: Emitter::Point {
-                    position: DVec3::new(-x, 0.0, 0.0),
-                },
-                polarization: Polarization::Linear {
-                    reference: DVec3::Z,
-                    angle_rad: 0.0,
-                },
-                intensity: 1.0,
-                coherence_group: 0,
-                coherence_length_m: f64::INFINITY,
-            });
-        }
+        let scene = fringe::stability::collinear_sources(dx);
         let p = DVec3::new(distance, 0.0, 0.0);
         let optics = scene.optics(lambda).unwrap();
         let limits = EnumerationLimits::default();
