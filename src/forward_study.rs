@@ -130,7 +130,7 @@ pub fn plate_scene(
         &Target::Point(center),
         &TraceSettings::default(),
     );
-    let mut beams: Vec<(f64, DVec3, &Vec<crate::path::Event>)> = Vec::new();
+    let mut beams: Vec<(f64, DVec3, &crate::trail::Trail<crate::path::Event>)> = Vec::new();
     for a in &arr {
         if !beams.iter().any(|b| *b.2 == a.path.sequence) {
             beams.push((a.vector.intensity(), a.vector.dir, &a.path.sequence));
@@ -171,6 +171,7 @@ pub fn exact_image_at(s: &StudyScene, level: Fidelity) -> Vec<f64> {
             spreading: true,
             ..SolveOptions::default()
         },
+        ..TraceSettings::default()
     };
     let plan = trace::plan(&s.scene, &optics, &[s.screen.center], &lim);
     (0..nx * ny)

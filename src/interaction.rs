@@ -267,10 +267,23 @@ pub fn interact_along(
     model: CoefficientModel,
     reflect: bool,
 ) -> Option<Ray> {
-    let sp = split(&mut ray, hit, model);
-    let b = followed(&sp.encounter, hit, reflect)?;
-    child(&mut ray, &sp, b);
-    Some(ray)
+    interact_along_in_place(&mut ray, hit, model, reflect).then_some(ray)
+}
+
+/// [`interact_along`] on the ray in place: false, with the ray partly updated, where
+/// [`interact_along`] gives `None`.
+pub fn interact_along_in_place(
+    ray: &mut Ray,
+    hit: &InterfaceHit,
+    model: CoefficientModel,
+    reflect: bool,
+) -> bool {
+    let sp = split(ray, hit, model);
+    let Some(b) = followed(&sp.encounter, hit, reflect) else {
+        return false;
+    };
+    child(ray, &sp, b);
+    true
 }
 
 /// The polarization of a ray: its frame axes X, Y and its Jones vector (see [`Ray`]).

@@ -18,7 +18,9 @@
 use crate::geometry::Extent;
 use crate::interaction::{InterfaceHit, SurfaceOptics, indices_for};
 use crate::scene::{Scene, SceneOptics, SurfaceKind};
+use crate::sequence_tree::{SequenceTree, TreeBuilder};
 use crate::source::Emitter;
+use crate::trail::Trail;
 use crate::{fresnel, interaction};
 use glam::DVec3;
 
@@ -40,17 +42,18 @@ pub struct Event {
 pub type Sequence = Vec<Event>;
 
 /// Compact text for a sequence, e.g. `R0 T1 R2` (R: reflect, T: refract, number: surface).
-pub fn sequence_label(seq: &[Event]) -> String {
-    if seq.is_empty() {
-        return "direct".into();
-    }
-    seq.iter()
+pub fn sequence_label<'a>(seq: impl IntoIterator<Item = &'a Event>) -> String {
+    let labels: Vec<String> = seq
+        .into_iter()
         .map(|e| match e.kind {
             EventKind::Reflect => format!("R{}", e.surface),
             EventKind::Refract => format!("T{}", e.surface),
         })
-        .collect::<Vec<_>>()
-        .join(" ")
+        .collect();
+    if labels.is_empty() {
+        return "direct".into();
+    }
+    labels.join(" ")
 }
 
 /// Where a path ends.
@@ -110,17 +113,20 @@ impl Default for SolveOptions {
 }
 
 /// A solved path: the polyline from the launch point through every event to the end.
+///
+/// The records are [`Trail`]s: a path solved on its own owns them; the reflected orders of a
+/// plane wave into the far field share their common beginning (`trace`'s far-field walk).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolvedPath {
-    pub sequence: Sequence,
+    pub sequence: Trail<Event>,
     /// Launch point, every event point, and the end point (for the far field: the last event
     /// point, or the launch point for a direct path).
-    pub points: Vec<DVec3>,
+    pub points: Trail<DVec3>,
     /// Unit direction of each segment (`points.len() - 1` entries, plus the exit direction for
     /// the far field: always `points.len()` entries, the last being the final direction).
-    pub dirs: Vec<DVec3>,
+    pub dirs: Trail<DVec3>,
     /// Refractive index along each segment (same length as `dirs`).
-    pub indices: Vec<f64>,
+    pub indices: Trail<f64>,
     /// Σ n_i L_i from the launch to the end (far field: to the reference wavefront) (m).
     pub optical_path_m: f64,
     /// Distance between the landing point and the target (m); for the far field the sine of the
@@ -192,6 +198,73 @@ impl Geometry {
     }
 }
 
+/// One event of a trace on the unbounded planes (no extents, no blockers).
+struct PlaneStep {
+    /// The event point.
+    x: DVec3,
+    /// Direction and index after the event.
+    d: DVec3,
+    n: f64,
+    /// A reflection from the denser side (π jump of `scalar_jump`).
+    denser: bool,
+    /// A totally internally reflected reflection.
+    tir: bool,
+    /// n2 cos θt/(n1 cos θi) for a refraction, 1 for a reflection.
+    refraction_factor: f64,
+}
+
+/// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`.
+fn step_planes(
+    scene: &Scene,
+    optics: &SceneOptics,
+    k: usize,
+    ev: Event,
+    (o, d, n): (DVec3, DVec3, f64),
+) -> Result<PlaneStep, PathError> {
+    let surf = &scene.surfaces[ev.surface];
+    let so = surface_optics(optics, k, ev.surface)?;
+    let t = surf
+        .plane
+        .intersect(o, d)
+        .filter(|t| *t > 0.0)
+        .ok_or(PathError::Missed { event: k })?;
+    let x = o + t * d;
+    let normal = surf.plane.normal;
+    let cos_i = d.dot(normal).abs().min(1.0);
+    let (n1, n2) = indices_for(so, normal, d, n);
+    let mirror = matches!(so, SurfaceOptics::IdealMirror);
+    let splitter = matches!(so, SurfaceOptics::Splitter { .. });
+    if n1 != n {
+        return Err(PathError::MediumMismatch { event: k });
+    }
+    Ok(match ev.kind {
+        EventKind::Reflect => PlaneStep {
+            x,
+            d: fresnel::reflect(d, normal),
+            n,
+            denser: mirror || n1 < n2 || (splitter && d.dot(normal) < 0.0),
+            tir: !mirror && !splitter && fresnel::cos2_theta_t(n1, n2, cos_i) < 0.0,
+            refraction_factor: 1.0,
+        },
+        EventKind::Refract => {
+            if mirror {
+                return Err(PathError::TotalInternalReflection { event: k });
+            }
+            let d_t = fresnel::refract(d, normal, n1, n2)
+                .ok_or(PathError::TotalInternalReflection { event: k })?;
+            let cos_t = d_t.dot(normal).abs();
+            PlaneStep {
+                x,
+                d: d_t,
+                n: n2,
+                denser: false,
+                tir: false,
+                refraction_factor: (n2 * cos_t) / (n1 * cos_i),
+            }
+        }
+    })
+}
+
 /// Trace a ray through `seq` on the unbounded planes (no extents, no blockers) into `g`
 /// (cleared first; nothing is allocated when the first event already fails).
 fn trace_planes(
@@ -206,54 +279,19 @@ fn trace_planes(
     if seq.is_empty() {
         g.start(origin, dir, optics.ambient_index, 0);
     }
-    let (mut o, mut d, mut n) = (origin, dir, optics.ambient_index);
+    let mut ray = (origin, dir, optics.ambient_index);
     for (k, ev) in seq.iter().enumerate() {
-        let surf = &scene.surfaces[ev.surface];
-        let so = surface_optics(optics, k, ev.surface)?;
-        let t = surf
-            .plane
-            .intersect(o, d)
-            .filter(|t| *t > 0.0)
-            .ok_or(PathError::Missed { event: k })?;
-        let x = o + t * d;
-        let normal = surf.plane.normal;
-        let cos_i = d.dot(normal).abs().min(1.0);
-        let (n1, n2) = indices_for(so, normal, d, n);
-        let mirror = matches!(so, SurfaceOptics::IdealMirror);
-        let splitter = matches!(so, SurfaceOptics::Splitter { .. });
-        if n1 != n {
-            return Err(PathError::MediumMismatch { event: k });
-        }
-        let (d_new, n_new) = match ev.kind {
-            EventKind::Reflect => {
-                if mirror || n1 < n2 || (splitter && d.dot(normal) < 0.0) {
-                    g.denser_reflections += 1;
-                }
-                if !mirror && !splitter && fresnel::cos2_theta_t(n1, n2, cos_i) < 0.0 {
-                    g.has_tir = true;
-                }
-                (fresnel::reflect(d, normal), n)
-            }
-            EventKind::Refract => {
-                if mirror {
-                    return Err(PathError::TotalInternalReflection { event: k });
-                }
-                let d_t = fresnel::refract(d, normal, n1, n2)
-                    .ok_or(PathError::TotalInternalReflection { event: k })?;
-                let cos_t = d_t.dot(normal).abs();
-                g.refraction_factor *= (n2 * cos_t) / (n1 * cos_i);
-                (d_t, n2)
-            }
-        };
+        let step = step_planes(scene, optics, k, *ev, ray)?;
+        g.denser_reflections += usize::from(step.denser);
+        g.has_tir |= step.tir;
+        g.refraction_factor *= step.refraction_factor;
         if k == 0 {
             g.start(origin, dir, optics.ambient_index, seq.len());
         }
-        g.points.push(x);
-        g.dirs.push(d_new);
-        g.indices.push(n_new);
-        o = x;
-        d = d_new;
-        n = n_new;
+        g.points.push(step.x);
+        g.dirs.push(step.d);
+        g.indices.push(step.n);
+        ray = (step.x, step.d, step.n);
     }
     Ok(())
 }
@@ -691,11 +729,7 @@ pub fn solve(
             seq,
             &mut g,
         )?;
-        let d_f = *g.dirs.last().unwrap();
-        let err = d_f.cross(dir.normalize()).length();
-        if err > 1e-9 || d_f.dot(dir) <= 0.0 {
-            return Err(PathError::DirectionMismatch);
-        }
+        let err = far_field_landing(*g.dirs.last().unwrap(), dir)?;
         return finish(scene, g, seq, &target, err, 0, 1.0);
     }
 
@@ -875,6 +909,51 @@ pub fn solve(
     finish(scene, g, seq, &target, landing_error, iterations, spreading)
 }
 
+/// Whether event `k` (`ev` at `x`) lies outside its surface's extent.
+fn out_of_extent(scene: &Scene, k: usize, ev: Event, x: DVec3) -> Option<PathError> {
+    (!scene.surfaces[ev.surface].interacts(x)).then_some(PathError::OutOfExtent {
+        event: k,
+        surface: ev.surface,
+    })
+}
+
+/// Whether segment `i` (from `a` along `d` over `len` m; `f64::INFINITY` for the far field's
+/// last) crosses a blocker or an interacting surface other than its end surfaces `ends` (the
+/// events before and after it).
+fn segment_blocked(
+    scene: &Scene,
+    i: usize,
+    ends: [Option<usize>; 2],
+    a: DVec3,
+    d: DVec3,
+    len: f64,
+) -> Option<PathError> {
+    for (j, surf) in scene.surfaces.iter().enumerate() {
+        if ends.contains(&Some(j)) {
+            continue;
+        }
+        if let Some(t) = surf.plane.intersect(a, d) {
+            let eps = 1e-12 * (1.0 + t.abs());
+            if t > eps && t < len - eps {
+                let x = a + t * d;
+                if surf.blocks(x) || surf.interacts(x) {
+                    return Some(PathError::Blocked {
+                        segment: i,
+                        surface: j,
+                    });
+                }
+            }
+        }
+    }
+    None
+}
+
+/// The optical path from the exit point `x` (direction `d`, index `n`) to the far-field
+/// wavefront through `reference`: −n·d·(x − reference).
+fn to_far_wavefront(x: DVec3, d: DVec3, n: f64, reference: DVec3) -> f64 {
+    n * d.dot(x - reference)
+}
+
 /// Validate extents and blockers and assemble the [`SolvedPath`].
 fn finish(
     scene: &Scene,
@@ -887,11 +966,8 @@ fn finish(
 ) -> Result<SolvedPath, PathError> {
     // Each event point must lie on its surface.
     for (k, ev) in seq.iter().enumerate() {
-        if !scene.surfaces[ev.surface].interacts(g.points[k + 1]) {
-            return Err(PathError::OutOfExtent {
-                event: k,
-                surface: ev.surface,
-            });
+        if let Some(e) = out_of_extent(scene, k, *ev, g.points[k + 1]) {
+            return Err(e);
         }
     }
     // No segment may cross a blocker or an unlisted interacting surface.
@@ -906,7 +982,6 @@ fn finish(
     let mut optical_path_m = -0.0;
     for i in 0..n_seg {
         let a = g.points[i];
-        let d = g.dirs[i];
         let len = if i + 1 < g.points.len() {
             let len = (g.points[i + 1] - a).length();
             optical_path_m += g.indices[i] * len;
@@ -914,48 +989,217 @@ fn finish(
         } else {
             f64::INFINITY
         };
-        let skip = |j: usize| {
-            (i >= 1 && seq[i - 1].surface == j) || (i < seq.len() && seq[i].surface == j)
-        };
-        for (j, surf) in scene.surfaces.iter().enumerate() {
-            if skip(j) {
-                continue;
-            }
-            if let Some(t) = surf.plane.intersect(a, d) {
-                let eps = 1e-12 * (1.0 + t.abs());
-                if t > eps && t < len - eps {
-                    let x = a + t * d;
-                    if surf.blocks(x) || surf.interacts(x) {
-                        return Err(PathError::Blocked {
-                            segment: i,
-                            surface: j,
-                        });
-                    }
-                }
-            }
+        let ends = [
+            i.checked_sub(1).map(|e| seq[e].surface),
+            seq.get(i).map(|e| e.surface),
+        ];
+        if let Some(e) = segment_blocked(scene, i, ends, a, g.dirs[i], len) {
+            return Err(e);
         }
     }
     if let Target::Direction { reference, .. } = target {
-        // To the far-field wavefront through `reference`: −n·d·(X_exit − reference).
         let (x, d, n) = (
             *g.points.last().unwrap(),
             *g.dirs.last().unwrap(),
             *g.indices.last().unwrap(),
         );
-        optical_path_m -= n * d.dot(x - *reference);
+        optical_path_m -= to_far_wavefront(x, d, n, *reference);
     }
     Ok(SolvedPath {
-        sequence: seq.to_vec(),
+        sequence: seq.to_vec().into(),
         optical_path_m,
         landing_error,
         iterations,
         denser_reflections: g.denser_reflections,
         has_tir: g.has_tir,
         spreading,
-        points: g.points,
-        dirs: g.dirs,
-        indices: g.indices,
+        points: g.points.into(),
+        dirs: g.dirs.into(),
+        indices: g.indices.into(),
     })
+}
+
+/// Whether a far-field path's exit direction `d_f` meets the target direction `dir`: the sine
+/// of the angle between them (the landing error), or the mismatch.
+fn far_field_landing(d_f: DVec3, dir: DVec3) -> Result<f64, PathError> {
+    let err = d_f.cross(dir.normalize()).length();
+    if err > 1e-9 || d_f.dot(dir) <= 0.0 {
+        return Err(PathError::DirectionMismatch);
+    }
+    Ok(err)
+}
+
+/// A beginning of a sequence traced by [`FarFieldPaths`]: the records so far, and what the
+/// checks of [`finish`] found on it.
+#[derive(Clone)]
+struct Beginning {
+    sequence: Trail<Event>,
+    points: Trail<DVec3>,
+    dirs: Trail<DVec3>,
+    indices: Trail<f64>,
+    denser_reflections: usize,
+    has_tir: bool,
+    /// Σ n_i L_i over the finite segments so far (summed in order from −0.0, as [`finish`]).
+    optical_path_m: f64,
+    /// The first event outside its extent, if any.
+    out_of_extent: Option<PathError>,
+    /// The first blocked finite segment, if any.
+    blocked: Option<PathError>,
+}
+
+/// The exact paths of a plane wave into the far field, traced one event at a time so that
+/// sequences sharing a beginning trace it once.
+///
+/// For a plane wave observed in the far field every launch is equivalent, so [`solve`] traces
+/// from the wave's reference point along its direction, and event k of a sequence depends only
+/// on the events before it. The beginnings of the current sequence are kept on a stack:
+/// [`FarFieldPaths::advance`] adds an event (O(1): the records are shared [`Trail`]s, the
+/// extent of the new event and the blockers of the new finite segment are checked once), and
+/// [`FarFieldPaths::path`] completes the current beginning into the [`SolvedPath`] that
+/// [`solve`] gives for the same sequence, bit for bit, with the same error when there is none.
+/// Walking a [`SequenceTree`] depth first costs O(1) per node: O(m) for a plate's m internal
+/// reflections instead of O(m²) when each order is traced from the source.
+pub struct FarFieldPaths<'a> {
+    scene: &'a Scene,
+    optics: &'a SceneOptics,
+    /// `stack[k]`: the beginning of k events.
+    stack: Vec<Beginning>,
+}
+
+impl<'a> FarFieldPaths<'a> {
+    /// The empty beginning of the plane wave along `direction` through `reference_point`.
+    pub fn new(
+        scene: &'a Scene,
+        optics: &'a SceneOptics,
+        direction: DVec3,
+        reference_point: DVec3,
+    ) -> Self {
+        let push = |x| {
+            let mut t = Trail::shared();
+            t.push(x);
+            t
+        };
+        let root = Beginning {
+            sequence: Trail::shared(),
+            points: push(reference_point),
+            dirs: push(direction.normalize()),
+            indices: {
+                let mut t = Trail::shared();
+                t.push(optics.ambient_index);
+                t
+            },
+            denser_reflections: 0,
+            has_tir: false,
+            optical_path_m: -0.0,
+            out_of_extent: None,
+            blocked: None,
+        };
+        FarFieldPaths {
+            scene,
+            optics,
+            stack: vec![root],
+        }
+    }
+
+    /// Number of events of the current beginning.
+    pub fn depth(&self) -> usize {
+        self.stack.len() - 1
+    }
+
+    /// Back to the beginning of `depth` events.
+    pub fn truncate(&mut self, depth: usize) {
+        self.stack.truncate(depth + 1);
+    }
+
+    /// The launch point, launch direction and spreading (1: a plane wave) of every path.
+    pub fn launch(&self) -> (DVec3, DVec3, f64) {
+        let root = &self.stack[0];
+        (
+            *root.points.last().unwrap(),
+            *root.dirs.last().unwrap(),
+            1.0,
+        )
+    }
+
+    /// Event `k` of the current beginning and its point.
+    pub fn event(&self, k: usize) -> (Event, DVec3) {
+        let b = &self.stack[k + 1];
+        (*b.sequence.last().unwrap(), *b.points.last().unwrap())
+    }
+
+    /// The current beginning's sequence.
+    pub fn sequence(&self) -> Trail<Event> {
+        self.stack.last().unwrap().sequence.clone()
+    }
+
+    /// One event further; on an error (the ray misses the event's plane, meets it from the
+    /// wrong medium, is totally reflected where it should refract, or the surface is opaque)
+    /// the beginning is unchanged, and every sequence that begins with it fails with this error.
+    pub fn advance(&mut self, ev: Event) -> Result<(), PathError> {
+        let k = self.depth();
+        let b = self.stack.last().unwrap();
+        let (o, d, n) = (
+            *b.points.last().unwrap(),
+            *b.dirs.last().unwrap(),
+            *b.indices.last().unwrap(),
+        );
+        let step = step_planes(self.scene, self.optics, k, ev, (o, d, n))?;
+        let mut next = b.clone();
+        next.denser_reflections += usize::from(step.denser);
+        next.has_tir |= step.tir;
+        // The finite segment k, from the last point to this event, as `finish` checks it.
+        let len = (step.x - o).length();
+        next.optical_path_m += n * len;
+        if next.out_of_extent.is_none() {
+            next.out_of_extent = out_of_extent(self.scene, k, ev, step.x);
+        }
+        if next.blocked.is_none() {
+            let ends = [b.sequence.last().map(|e| e.surface), Some(ev.surface)];
+            next.blocked = segment_blocked(self.scene, k, ends, o, d, len);
+        }
+        next.sequence.push(ev);
+        next.points.push(step.x);
+        next.dirs.push(step.d);
+        next.indices.push(step.n);
+        self.stack.push(next);
+        Ok(())
+    }
+
+    /// The current beginning as a whole sequence into the far-field `target` (a
+    /// [`Target::Direction`]): the path [`solve`] finds for it, or its error.
+    pub fn path(&self, target: &Target) -> Result<SolvedPath, PathError> {
+        let Target::Direction { dir, reference } = *target else {
+            panic!("FarFieldPaths::path needs a far-field target, got {target:?}");
+        };
+        let b = self.stack.last().unwrap();
+        let (x, d, n) = (
+            *b.points.last().unwrap(),
+            *b.dirs.last().unwrap(),
+            *b.indices.last().unwrap(),
+        );
+        let landing_error = far_field_landing(d, dir)?;
+        if let Some(e) = b.out_of_extent.clone().or_else(|| b.blocked.clone()) {
+            return Err(e);
+        }
+        // The last segment runs from the last point to infinity.
+        let k = self.depth();
+        let ends = [b.sequence.last().map(|e| e.surface), None];
+        if let Some(e) = segment_blocked(self.scene, k, ends, x, d, f64::INFINITY) {
+            return Err(e);
+        }
+        Ok(SolvedPath {
+            sequence: b.sequence.clone(),
+            points: b.points.clone(),
+            dirs: b.dirs.clone(),
+            indices: b.indices.clone(),
+            optical_path_m: b.optical_path_m - to_far_wavefront(x, d, n, reference),
+            landing_error,
+            iterations: 0,
+            denser_reflections: b.denser_reflections,
+            has_tir: b.has_tir,
+            spreading: 1.0,
+        })
+    }
 }
 
 /// Limits of sequence enumeration.
@@ -979,16 +1223,16 @@ impl Default for EnumerationLimits {
 /// Discover the surface sequences light from `emitter` can follow: probe rays are traced
 /// forward (toward each of `probe_targets`) through the real, bounded scene, branching into
 /// reflected and refracted children, and every node of the resulting ray trees is a candidate
-/// sequence. Sequences are returned sorted and without duplicates; the exact solver decides
-/// which of them reach a given point.
+/// sequence. They are returned as one tree of common beginnings ([`SequenceTree`]: sorted,
+/// without duplicates); the exact solver decides which of them reach a given point.
 pub fn discover_sequences(
     scene: &Scene,
     optics: &SceneOptics,
     emitter: Emitter,
     probe_targets: &[DVec3],
     limits: &EnumerationLimits,
-) -> Vec<Sequence> {
-    let mut found = std::collections::BTreeSet::new();
+) -> SequenceTree {
+    let mut found = TreeBuilder::new();
     for &p in probe_targets {
         let (o, d) = match emitter {
             Emitter::Point { position } => (position, (p - position).normalize()),
@@ -1008,7 +1252,6 @@ pub fn discover_sequences(
         if !d.is_finite() {
             continue;
         }
-        let mut seq = Vec::new();
         explore(
             scene,
             optics,
@@ -1017,12 +1260,12 @@ pub fn discover_sequences(
             optics.ambient_index,
             None,
             0,
-            &mut seq,
+            (TreeBuilder::ROOT, 0),
             limits,
             &mut found,
         );
     }
-    found.into_iter().collect()
+    found.finish()
 }
 
 #[allow(clippy::too_many_arguments)]
@@ -1034,12 +1277,12 @@ fn explore(
     n: f64,
     from: Option<usize>,
     internal: usize,
-    seq: &mut Sequence,
+    (node, depth): (usize, usize),
     limits: &EnumerationLimits,
-    found: &mut std::collections::BTreeSet<Sequence>,
+    found: &mut TreeBuilder,
 ) {
-    found.insert(seq.clone());
-    if seq.len() >= limits.max_events {
+    found.mark(node);
+    if depth >= limits.max_events {
         return;
     }
     // Nearest surface ahead that stops or splits the ray.
@@ -1071,10 +1314,13 @@ fn explore(
     let (n1, n2) = interaction::indices_for(so, normal, d, n);
     let is_internal = n != optics.ambient_index;
     if !is_internal || internal < limits.max_internal_reflections {
-        seq.push(Event {
-            surface: j,
-            kind: EventKind::Reflect,
-        });
+        let child = found.child(
+            node,
+            Event {
+                surface: j,
+                kind: EventKind::Reflect,
+            },
+        );
         let inc = usize::from(is_internal);
         explore(
             scene,
@@ -1084,18 +1330,20 @@ fn explore(
             n,
             Some(j),
             internal + inc,
-            seq,
+            (child, depth + 1),
             limits,
             found,
         );
-        seq.pop();
     }
     if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics {
         if let Some(d_t) = fresnel::refract(d, normal, n1, n2) {
-            seq.push(Event {
-                surface: j,
-                kind: EventKind::Refract,
-            });
+            let child = found.child(
+                node,
+                Event {
+                    surface: j,
+                    kind: EventKind::Refract,
+                },
+            );
             explore(
                 scene,
                 optics,
@@ -1104,11 +1352,10 @@ fn explore(
                 n2,
                 Some(j),
                 internal,
-                seq,
+                (child, depth + 1),
                 limits,
                 found,
             );
-            seq.pop();
         }
     }
 }

@@ -7,6 +7,7 @@
 //! path *differences* can be formed before any phase is taken. Intensity = |J_x|² + |J_y|² =
 //! trace of the coherence matrix.
 
+use crate::trail::Trail;
 use glam::DVec3;
 use num_complex::Complex64;
 use std::fmt::Write as _;
@@ -41,10 +42,12 @@ pub enum LedgerEntry {
     CoherenceLost { surface: Option<usize> },
 }
 
-/// The per-ray phase ledger: every contribution to the phase in the order it happened.
+/// The per-ray phase ledger: every contribution to the phase in the order it happened. The
+/// rays of a plate's reflected orders share the entries of their common beginning
+/// ([`Trail`]).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PhaseLedger {
-    pub entries: Vec<LedgerEntry>,
+    pub entries: Trail<LedgerEntry>,
 }
 
 impl PhaseLedger {

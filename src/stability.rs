@@ -392,7 +392,7 @@ fn traced_r(n1: f64, n2: f64, theta: f64, pol: Pol) -> Complex64 {
         surface: 0,
         kind: EventKind::Reflect,
     }];
-    let Some(a) = arr.iter().find(|a| a.path.sequence == reflect) else {
+    let Some(a) = arr.iter().find(|a| a.path.sequence == reflect[..]) else {
         return nan;
     };
     let s = fresnel::s_direction(d_i, DVec3::Z, DVec3::Y);

@@ -5,14 +5,18 @@
 use crate::accumulate::{Accumulator, Contribution};
 use crate::fidelity::{Fidelity, SceneNeeds};
 use crate::interaction::{
-    CoefficientModel, InterfaceHit, JonesFrame, interact_along, interact_along_shared,
+    CoefficientModel, InterfaceHit, JonesFrame, interact_along, interact_along_in_place,
+    interact_along_shared,
 };
 use crate::path::{
-    self, EnumerationLimits, EventKind, PathError, Sequence, SolveOptions, SolvedPath, Target,
+    self, EnumerationLimits, Event, EventKind, PathError, Sequence, SolveOptions, SolvedPath,
+    Target,
 };
 use crate::ray::{INCOHERENT, LedgerEntry, Ray};
 use crate::scene::{Scene, SceneOptics};
-use crate::source::{Channel, field_reference};
+use crate::sequence_tree::SequenceTree;
+use crate::source::{Channel, Emitter, Source, field_reference};
+use crate::trail::Trail;
 use glam::DVec3;
 use num_complex::Complex64;
 use std::sync::Arc;
@@ -22,6 +26,10 @@ use std::sync::Arc;
 pub struct TraceSettings {
     pub limits: EnumerationLimits,
     pub solve: SolveOptions,
+    /// Trace the sequences of a plane wave into the far field that share a beginning once
+    /// ([`path::FarFieldPaths`]: O(m) for a plate's m internal reflections). `false` traces
+    /// every sequence from the source (O(m²)); both give the same arrivals bit for bit.
+    pub share_beginnings: bool,
 }
 
 impl Default for TraceSettings {
@@ -29,6 +37,7 @@ impl Default for TraceSettings {
         TraceSettings {
             limits: EnumerationLimits::default(),
             solve: SolveOptions::default(),
+            share_beginnings: true,
         }
     }
 }
@@ -36,7 +45,21 @@ impl Default for TraceSettings {
 /// The candidate surface sequences of every source, discovered once per scene.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Plan {
-    pub sequences: Vec<Vec<Sequence>>,
+    /// One tree of sequences per source, in the scene's order.
+    pub sequences: Vec<SequenceTree>,
+}
+
+impl Plan {
+    /// A plan of given sequence lists, one per source (their order is not kept: a plan walks
+    /// sequences in sorted order).
+    pub fn from_sequences(per_source: Vec<Vec<Sequence>>) -> Plan {
+        Plan {
+            sequences: per_source
+                .into_iter()
+                .map(SequenceTree::from_sequences)
+                .collect(),
+        }
+    }
 }
 
 /// Discover the sequences of every source with probe rays toward `probe_targets` (typically the
@@ -90,33 +113,41 @@ pub struct Arrival {
 #[derive(Clone, Debug, PartialEq)]
 pub struct Failure {
     pub source: usize,
-    pub sequence: Sequence,
+    pub sequence: Trail<Event>,
     pub error: PathError,
 }
 
-/// A channel's ray at the launch point of a solved path (no ledger entries yet), given the
-/// launch direction normalized, `unit = path.dirs[0].normalize()`, and the channel's field
-/// reference `e_ref = field_reference(channel.reference, path.dirs[0])`.
+/// A channel's ray at the launch point `p0` in direction `d0` (no ledger entries yet), given
+/// `unit = d0.normalize()` and the channel's field reference
+/// `e_ref = field_reference(channel.reference, d0)`; `spreading` is the path's S² and `ledger`
+/// the (empty) record the ray starts with.
+#[allow(clippy::too_many_arguments)]
 fn launch_ray_with(
     optics: &SceneOptics,
     channel: &Channel,
     coherence_length_m: f64,
-    path: &SolvedPath,
+    (p0, d0, spreading): (DVec3, DVec3, f64),
     unit: DVec3,
     e_ref: DVec3,
+    ledger: Trail<LedgerEntry>,
 ) -> Ray {
-    let d0 = path.dirs[0];
     let mut ray = Ray::linear_unit(
-        path.points[0],
+        p0,
         unit,
         channel.field_direction_from(e_ref, d0),
-        (channel.intensity * path.spreading).sqrt(),
+        (channel.intensity * spreading).sqrt(),
         optics.lambda_m,
         optics.ambient_index,
     );
     ray.coherence_id = channel.coherence_id;
     ray.coherence_length_m = coherence_length_m;
+    ray.ledger.entries = ledger;
     ray
+}
+
+/// Where a solved path starts: its launch point, launch direction and spreading S².
+fn launch_of(path: &SolvedPath) -> (DVec3, DVec3, f64) {
+    (path.points[0], path.dirs[0], path.spreading)
 }
 
 /// A channel's ray at the launch point of a solved path (no ledger entries yet).
@@ -132,23 +163,31 @@ fn launch_ray(
         optics,
         channel,
         coherence_length_m,
-        path,
+        launch_of(path),
         d0.normalize(),
         e_ref,
+        Trail::with_capacity(ledger_capacity(path)),
     )
 }
 
-/// The interface met at event `k` of a solved path.
-fn hit_at(scene: &Scene, optics: &SceneOptics, path: &SolvedPath, k: usize) -> InterfaceHit {
-    let ev = path.sequence[k];
+/// The interface met by event `ev` at `point`.
+fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> InterfaceHit {
     let surf = &scene.surfaces[ev.surface];
     InterfaceHit {
         surface: ev.surface,
-        point: path.points[k + 1],
+        point,
         normal: surf.plane.normal,
         optics: optics.surfaces[ev.surface].expect("solved paths only meet non-opaque surfaces"),
         coherence: surf.coherence(),
     }
+}
+
+/// The events of a solved path with the points where they happen.
+fn events_of(path: &SolvedPath) -> impl Iterator<Item = (Event, DVec3)> + '_ {
+    path.sequence
+        .iter()
+        .copied()
+        .zip(path.points.iter().skip(1).copied())
 }
 
 /// The last leg of a ray after its last event: to the target point, or to the far-field
@@ -193,9 +232,8 @@ pub fn propagate(
     model: CoefficientModel,
 ) -> Ray {
     let mut ray = launch_ray(optics, channel, coherence_length_m, path);
-    ray.ledger.entries.reserve(ledger_capacity(path));
-    for (k, ev) in path.sequence.iter().enumerate() {
-        let hit = hit_at(scene, optics, path, k);
+    for (ev, point) in events_of(path) {
+        let hit = hit_at(scene, optics, ev, point);
         ray = interact_along(ray, &hit, model, ev.kind == EventKind::Reflect)
             .expect("solved paths only refract where a refracted ray exists");
     }
@@ -203,13 +241,158 @@ pub fn propagate(
     ray
 }
 
-/// The most channels [`propagate_channels`] carries in one pass (a source has one or two).
+/// The most channels carried together (a source has one or two).
 const SHARED_CHANNELS: usize = 4;
 
-/// [`propagate`] for every channel of a source along one path, in one pass: the channels differ
-/// only in polarization, so each interaction's geometry, coefficients and ledger entry are
-/// computed once ([`interact_along_shared`]). `emit(k, ray)` receives channel k's ray, in
-/// order; each is bitwise the ray [`propagate`] gives that channel.
+/// The rays of a source's channels along a path. The channels differ only in polarization, so
+/// they travel together: the last channel's ray in full and the others' polarizations riding
+/// along, each interaction's geometry, coefficients and ledger entry computed once
+/// ([`interact_along_shared`]). Channels whose coherence ids could part (some start incoherent,
+/// some not), or more than [`SHARED_CHANNELS`], travel apart, each as [`propagate`] carries it.
+#[derive(Clone)]
+enum ChannelRays {
+    Together {
+        lead: Ray,
+        frames: [JonesFrame; SHARED_CHANNELS - 1],
+    },
+    Apart(Vec<Ray>),
+}
+
+impl ChannelRays {
+    /// The channels' rays at the launch `(p0, d0, spreading)`, each ledger starting as
+    /// `ledger()` gives it (empty: owned with room reserved, or shared).
+    fn launch(
+        optics: &SceneOptics,
+        channels: &[Channel],
+        coherence_length_m: f64,
+        start: (DVec3, DVec3, f64),
+        ledger: impl Fn() -> Trail<LedgerEntry>,
+    ) -> ChannelRays {
+        let d0 = start.1;
+        let unit = d0.normalize();
+        let Some((last, rest)) = channels.split_last() else {
+            return ChannelRays::Apart(Vec::new());
+        };
+        // The rays share their coherence id's fate only if all start coherent or all incoherent.
+        let incoherent = last.coherence_id == INCOHERENT;
+        if channels.len() > SHARED_CHANNELS
+            || rest
+                .iter()
+                .any(|c| (c.coherence_id == INCOHERENT) != incoherent)
+        {
+            let alone = |ch: &Channel| {
+                let e = field_reference(ch.reference, d0);
+                launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger())
+            };
+            return ChannelRays::Apart(channels.iter().map(alone).collect());
+        }
+        // The field reference is shared too (bit for bit: one reference gives one projection).
+        let e_ref = field_reference(last.reference, d0);
+        let launch = |ch: &Channel| {
+            let same = ch.reference.to_array().map(f64::to_bits)
+                == last.reference.to_array().map(f64::to_bits);
+            let e = if same {
+                e_ref
+            } else {
+                field_reference(ch.reference, d0)
+            };
+            launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger())
+        };
+        let mut frames = [JonesFrame::default(); SHARED_CHANNELS - 1];
+        for (f, ch) in frames.iter_mut().zip(rest) {
+            *f = JonesFrame::of(&launch(ch));
+        }
+        ChannelRays::Together {
+            lead: launch(last),
+            frames,
+        }
+    }
+
+    /// Through the interaction at `hit` along the followed branch (`reflect`: the reflected
+    /// one); `others` is the number of channels besides the lead. False, with the rays partly
+    /// updated, where the branch does not exist ([`interact_along`] gives `None`).
+    fn interact(
+        &mut self,
+        hit: &InterfaceHit,
+        model: CoefficientModel,
+        reflect: bool,
+        others: usize,
+    ) -> bool {
+        match self {
+            ChannelRays::Together { lead, frames } => {
+                interact_along_shared(lead, &mut frames[..others], hit, model, reflect)
+            }
+            ChannelRays::Apart(rays) => rays
+                .iter_mut()
+                .all(|ray| interact_along_in_place(ray, hit, model, reflect)),
+        }
+    }
+
+    /// The last leg to `target` ([`end_ray`]); `emit(k, ray)` receives channel k's ray, in order.
+    fn emit(
+        self,
+        channels: &[Channel],
+        target: &Target,
+        coherence_length_m: f64,
+        mut emit: impl FnMut(usize, Ray),
+    ) {
+        match self {
+            ChannelRays::Apart(rays) => {
+                for (k, mut ray) in rays.into_iter().enumerate() {
+                    end_ray(&mut ray, target, coherence_length_m);
+                    emit(k, ray);
+                }
+            }
+            ChannelRays::Together { mut lead, frames } => {
+                let rest = &channels[..channels.len() - 1];
+                end_ray(&mut lead, target, coherence_length_m);
+                // The others differ from the lead only in frame and coherence id.
+                let lost = lead.coherence_id == INCOHERENT;
+                for (k, (f, ch)) in frames.iter().zip(rest).enumerate() {
+                    let mut ray = lead.clone();
+                    f.apply_to(&mut ray);
+                    ray.coherence_id = if lost { INCOHERENT } else { ch.coherence_id };
+                    emit(k, ray);
+                }
+                emit(rest.len(), lead);
+            }
+        }
+    }
+}
+
+/// The rays of every channel of a source carried along a solved path ([`ChannelRays`]), up to
+/// the last event.
+fn carry(
+    scene: &Scene,
+    optics: &SceneOptics,
+    channels: &[Channel],
+    coherence_length_m: f64,
+    path: &SolvedPath,
+    model: CoefficientModel,
+) -> ChannelRays {
+    let capacity = ledger_capacity(path);
+    let mut rays = ChannelRays::launch(
+        optics,
+        channels,
+        coherence_length_m,
+        launch_of(path),
+        || Trail::with_capacity(capacity),
+    );
+    let others = channels.len().saturating_sub(1);
+    for (ev, point) in events_of(path) {
+        let hit = hit_at(scene, optics, ev, point);
+        let ok = rays.interact(&hit, model, ev.kind == EventKind::Reflect, others);
+        assert!(ok, "{NO_REFRACTED_RAY}");
+    }
+    rays
+}
+
+/// The panic message of a solved path whose refraction the ray cannot follow.
+const NO_REFRACTED_RAY: &str = "solved paths only refract where a refracted ray exists";
+
+/// [`propagate`] for every channel of a source along one path, in one pass ([`ChannelRays`]).
+/// `emit(k, ray)` receives channel k's ray, in order; each is bitwise the ray [`propagate`]
+/// gives that channel.
 #[allow(clippy::too_many_arguments)]
 pub fn propagate_channels(
     scene: &Scene,
@@ -219,70 +402,14 @@ pub fn propagate_channels(
     path: &SolvedPath,
     target: &Target,
     model: CoefficientModel,
-    mut emit: impl FnMut(usize, Ray),
+    emit: impl FnMut(usize, Ray),
 ) {
-    // The last channel's ray is carried in full; the others' frames ride along.
-    let Some((last, rest)) = channels.split_last() else {
-        return;
-    };
-    // The rays share their coherence id's fate only if all start coherent or all incoherent.
-    let incoherent = last.coherence_id == INCOHERENT;
-    if channels.len() > SHARED_CHANNELS
-        || rest
-            .iter()
-            .any(|c| (c.coherence_id == INCOHERENT) != incoherent)
-    {
-        for (k, ch) in channels.iter().enumerate() {
-            emit(
-                k,
-                propagate(scene, optics, ch, coherence_length_m, path, target, model),
-            );
-        }
-        return;
-    }
-    // The launch direction and the field reference are shared too (bit for bit: one
-    // reference gives one projection).
-    let d0 = path.dirs[0];
-    let unit = d0.normalize();
-    let e_ref = field_reference(last.reference, d0);
-    let launch = |ch: &Channel| {
-        let same = ch.reference.to_array().map(f64::to_bits)
-            == last.reference.to_array().map(f64::to_bits);
-        let e = if same {
-            e_ref
-        } else {
-            field_reference(ch.reference, d0)
-        };
-        launch_ray_with(optics, ch, coherence_length_m, path, unit, e)
-    };
-    let mut lead = launch(last);
-    lead.ledger.entries.reserve(ledger_capacity(path));
-    let mut frames = [JonesFrame::default(); SHARED_CHANNELS - 1];
-    let others = &mut frames[..rest.len()];
-    for (f, ch) in others.iter_mut().zip(rest) {
-        *f = JonesFrame::of(&launch(ch));
-    }
-    for (k, ev) in path.sequence.iter().enumerate() {
-        let hit = hit_at(scene, optics, path, k);
-        let ok = interact_along_shared(
-            &mut lead,
-            others,
-            &hit,
-            model,
-            ev.kind == EventKind::Reflect,
-        );
-        assert!(ok, "solved paths only refract where a refracted ray exists");
-    }
-    end_ray(&mut lead, target, coherence_length_m);
-    // The others differ from the lead only in frame and coherence id.
-    let lost = lead.coherence_id == INCOHERENT;
-    for (k, (f, ch)) in others.iter().zip(rest).enumerate() {
-        let mut ray = lead.clone();
-        f.apply_to(&mut ray);
-        ray.coherence_id = if lost { INCOHERENT } else { ch.coherence_id };
-        emit(k, ray);
-    }
-    emit(rest.len(), lead);
+    carry(scene, optics, channels, coherence_length_m, path, model).emit(
+        channels,
+        target,
+        coherence_length_m,
+        emit,
+    );
 }
 
 /// Every ray reaching `target`, and every candidate sequence that did not.
@@ -311,7 +438,8 @@ pub fn arrivals(
 /// work), with the failed sequences pushed to `failed` when given. Without a failure list,
 /// sequences that [`path::cannot_reach`] rules out are not solved at all (the arrivals are the
 /// same; only the reasons would be missing). The channels of a source are carried along each
-/// path together ([`propagate_channels`]).
+/// path together ([`ChannelRays`]); a plane wave's far-field sequences are walked as a tree
+/// ([`far_field_walk`]) unless `settings.share_beginnings` is off.
 pub fn arrivals_with(
     scene: &Scene,
     optics: &SceneOptics,
@@ -324,55 +452,177 @@ pub fn arrivals_with(
     let mut found = Vec::new();
     for (si, src) in scene.sources.iter().enumerate() {
         let channels = src.channels();
-        for seq in &plan.sequences[si] {
-            // Without a failure list the reason is not needed: skip what surely fails.
-            if failed.is_none() && path::cannot_reach(scene, src.emitter, seq, target) {
-                continue;
-            }
-            let p = match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
-                Ok(p) => Arc::new(p),
-                Err(error) => {
-                    if let Some(f) = failed.as_deref_mut() {
-                        f.push(Failure {
-                            source: si,
-                            sequence: seq.clone(),
-                            error,
-                        });
-                    }
-                    continue;
-                }
-            };
-            let first = found.len();
-            let along = |model, emit: &mut dyn FnMut(usize, Ray)| {
-                let coherence_length_m = src.coherence_length_m;
-                propagate_channels(
-                    scene,
-                    optics,
-                    &channels,
-                    coherence_length_m,
-                    &p,
-                    target,
-                    model,
-                    emit,
-                )
-            };
-            along(CoefficientModel::Vector, &mut |k, vector| {
-                found.push(Arrival {
-                    source: si,
-                    channel: channels[k],
-                    path: Arc::clone(&p),
-                    vector,
-                    paper: None,
-                })
-            });
-            if paper_rules {
-                along(CoefficientModel::PaperRules, &mut |k, ray| {
-                    found[first + k].paper = Some(ray)
-                });
-            }
+        let mut out = Recorder {
+            source: si,
+            channels: &channels,
+            target,
+            coherence_length_m: src.coherence_length_m,
+            found: &mut found,
+            failed: failed.as_deref_mut(),
+        };
+        let tree = &plan.sequences[si];
+        if let (true, Emitter::PlaneWave { .. }, Target::Direction { .. }) =
+            (settings.share_beginnings, src.emitter, target)
+        {
+            far_field_walk(scene, optics, src, tree, paper_rules, &mut out);
+            continue;
         }
+        tree.for_each(|seq| {
+            // Without a failure list the reason is not needed: skip what surely fails.
+            if out.failed.is_none() && path::cannot_reach(scene, src.emitter, seq, target) {
+                return;
+            }
+            match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
+                Ok(p) => {
+                    let along =
+                        |model| carry(scene, optics, &channels, src.coherence_length_m, &p, model);
+                    let vector = along(CoefficientModel::Vector);
+                    let paper = paper_rules.then(|| along(CoefficientModel::PaperRules));
+                    out.arrive(Arc::new(p), vector, paper);
+                }
+                Err(error) => out.fail(Trail::from(seq.to_vec()), error),
+            }
+        });
     }
     found
+}
+
+/// Where the arrivals and failures of one source go.
+struct Recorder<'a, 'f> {
+    source: usize,
+    channels: &'a [Channel],
+    target: &'a Target,
+    coherence_length_m: f64,
+    found: &'a mut Vec<Arrival>,
+    failed: Option<&'f mut Vec<Failure>>,
+}
+
+impl Recorder<'_, '_> {
+    /// The channels' arrivals along `path`, from their rays after its last event under the
+    /// vector model and, when traced, the paper's rules.
+    fn arrive(&mut self, path: Arc<SolvedPath>, vector: ChannelRays, paper: Option<ChannelRays>) {
+        let first = self.found.len();
+        let (found, channels, si) = (&mut *self.found, self.channels, self.source);
+        vector.emit(channels, self.target, self.coherence_length_m, |k, ray| {
+            found.push(Arrival {
+                source: si,
+                channel: channels[k],
+                path: Arc::clone(&path),
+                vector: ray,
+                paper: None,
+            })
+        });
+        if let Some(paper) = paper {
+            paper.emit(channels, self.target, self.coherence_length_m, |k, ray| {
+                found[first + k].paper = Some(ray)
+            });
+        }
+    }
+
+    /// A sequence without a path (kept only when failures are asked for).
+    fn fail(&mut self, sequence: Trail<Event>, error: PathError) {
+        if let Some(f) = self.failed.as_deref_mut() {
+            f.push(Failure {
+                source: self.source,
+                sequence,
+                error,
+            });
+        }
+    }
+}
+
+/// The arrivals of a plane wave into the far field along every sequence of `tree`, walked depth
+/// first with [`path::FarFieldPaths`]: each beginning is traced once, and the channels' rays
+/// are carried through each of its events once (lazily, when a sequence through it arrives).
+/// The arrivals and failures are those of the one-by-one trace, bit for bit and in the same
+/// order; the cost is O(1) per tree node instead of O(sequence length) per sequence.
+fn far_field_walk(
+    scene: &Scene,
+    optics: &SceneOptics,
+    src: &Source,
+    tree: &SequenceTree,
+    paper_rules: bool,
+    out: &mut Recorder,
+) {
+    let Emitter::PlaneWave {
+        direction,
+        reference_point,
+    } = src.emitter
+    else {
+        unreachable!("far_field_walk is only called for plane waves");
+    };
+    let mut paths = path::FarFieldPaths::new(scene, optics, direction, reference_point);
+    let models: &[CoefficientModel] = if paper_rules {
+        &[CoefficientModel::Vector, CoefficientModel::PaperRules]
+    } else {
+        &[CoefficientModel::Vector]
+    };
+    // Per model, `rays[m][k]`: the channels' rays after k events of the current beginning;
+    // entries from `valid` on belong to an earlier beginning.
+    let launch = |_| {
+        let start = paths.launch();
+        vec![ChannelRays::launch(
+            optics,
+            out.channels,
+            out.coherence_length_m,
+            start,
+            Trail::shared,
+        )]
+    };
+    let mut rays: Vec<Vec<ChannelRays>> = models.iter().map(launch).collect();
+    let mut valid = 1;
+    let others = out.channels.len().saturating_sub(1);
+    let nodes = tree.nodes();
+    let mut i = 0;
+    while i < nodes.len() {
+        let node = nodes[i];
+        if let Some(ev) = node.event {
+            paths.truncate(node.depth - 1);
+            valid = valid.min(node.depth);
+            if let Err(error) = paths.advance(ev) {
+                // Every sequence beginning here fails the same way.
+                if out.failed.is_some() {
+                    let mut seqs = vec![paths.sequence()];
+                    for n in &nodes[i..node.subtree_end] {
+                        seqs.truncate(n.depth - node.depth + 1);
+                        let mut seq = seqs.last().unwrap().clone();
+                        seq.push(n.event.expect("only the root has no event"));
+                        if n.candidate {
+                            out.fail(seq.clone(), error.clone());
+                        }
+                        seqs.push(seq);
+                    }
+                }
+                i = node.subtree_end;
+                continue;
+            }
+        }
+        if node.candidate {
+            match paths.path(out.target) {
+                Ok(p) => {
+                    // Carry the rays through the events they have not met yet.
+                    for (stack, &model) in rays.iter_mut().zip(models) {
+                        stack.truncate(valid);
+                        for k in valid..=node.depth {
+                            let (ev, point) = paths.event(k - 1);
+                            let mut next = stack[k - 1].clone();
+                            let hit = hit_at(scene, optics, ev, point);
+                            let ok =
+                                next.interact(&hit, model, ev.kind == EventKind::Reflect, others);
+                            assert!(ok, "{NO_REFRACTED_RAY}");
+                            stack.push(next);
+                        }
+                    }
+                    valid = node.depth + 1;
+                    let mut at_end = rays.iter().map(|stack| stack[node.depth].clone());
+                    let vector = at_end.next().unwrap();
+                    out.arrive(Arc::new(p), vector, at_end.next());
+                }
+                Err(error) => out.fail(paths.sequence(), error),
+            }
+        }
+        i += 1;
+    }
 }
 
 /// The panic message of asking for `paper_rules` of an arrival traced without them.

@@ -325,7 +325,7 @@ proptest! {
                 }
             }
             for (si, src) in scene.sources.iter().enumerate() {
-                for seq in &plan.sequences[si] {
+                for seq in &plan.sequences[si].sequences() {
                     if path::cannot_reach(&scene, src.emitter, seq, t) {
                         let solved = path::solve(&scene, &optics, src.emitter, seq, *t, &st.solve);
                         prop_assert!(solved.is_err(), "cannot_reach claimed {} at {:?}, but solve found {:?}", path::sequence_label(seq), t, solved);

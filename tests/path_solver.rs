@@ -189,7 +189,7 @@ fn check_landing(
         "reported landing error {:e} > tol {tol:e}",
         sol.landing_error
     );
-    for (k, (a, b)) in pts.iter().zip(&sol.points[1..]).enumerate() {
+    for (k, (a, b)) in pts.iter().zip(sol.points.iter().skip(1)).enumerate() {
         let e = (*a - *b).length();
         prop_assert!(
             e <= 10.0 * tol,

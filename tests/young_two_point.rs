@@ -20,7 +20,7 @@ mod common;
 use common::EPS;
 use fringe::fidelity::Fidelity;
 use fringe::material::Medium;
-use fringe::path::{EnumerationLimits, SolveOptions, Target};
+use fringe::path::{EnumerationLimits, Sequence, SolveOptions, Target};
 use fringe::scene::Scene;
 use fringe::source::{Emitter, Polarization, Source};
 use fringe::trace::{self, TraceSettings};
@@ -58,8 +58,9 @@ fn screen(
     let optics = scene.optics(lambda).unwrap();
     let limits = EnumerationLimits::default();
     let plan = trace::plan(scene, &optics, &[DVec3::new(0.0, 0.0, l)], &limits);
+    let listed: Vec<Vec<Sequence>> = plan.sequences.iter().map(|t| t.sequences()).collect();
     assert_eq!(
-        plan.sequences,
+        listed,
         vec![vec![vec![]], vec![vec![]]],
         "no surfaces: only the direct sequence per source"
     );
@@ -69,6 +70,7 @@ fn screen(
             spreading,
             ..SolveOptions::default()
         },
+        ..TraceSettings::default()
     };
     let h = scene.sources[1].anchor().x;
     xs.iter()
@@ -192,15 +194,13 @@ fn tir_two_beam_fringes_use_one_time_convention() {
             coherence_length_m: f64::INFINITY,
         });
         let optics = scene.optics(lambda).unwrap();
-        let plan = Plan {
-            sequences: vec![vec![
-                vec![],
-                vec![Event {
-                    surface: face,
-                    kind: EventKind::Reflect,
-                }],
-            ]],
-        };
+        let plan = Plan::from_sequences(vec![vec![
+            vec![],
+            vec![Event {
+                surface: face,
+                kind: EventKind::Reflect,
+            }],
+        ]]);
         let s_img = DVec3::new(s.x, s.y, -s.z);
         let e_of = |d: DVec3| (reference - reference.dot(d) * d).normalize();
         for k in 0..=40 {

@@ -256,6 +256,7 @@ fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
             spreading: case.spec.trace.spreading,
             ..SolveOptions::default()
         },
+        ..TraceSettings::default()
     }
 }
 

@@ -1,0 +1,307 @@
+//! `Trail<T>`: the append-only record of a ray's history (its events, points, directions,
+//! indices, phase ledger) that can share its beginning with the records of other rays.
+//!
+//! The reflected orders of a plate leave the source along one zig-zag: order k + 1's history is
+//! order k's up to its last bounce, then two more events. Recording each order with its own
+//! copy costs O(k) per order and O(m²) for m bounces; a trail that *shares* the common
+//! beginning costs O(1) per event, so the whole family costs O(m) (`trace`'s far-field walk).
+//!
+//! A trail is either
+//! * **owned**: a plain `Vec` (what a single traced ray uses; `clone` copies it), or
+//! * **shared**: a persistent list of its elements from the last back to the first, each node
+//!   behind an `Arc`. `clone` is O(1) (one reference count) and `push` adds one node; trails
+//!   cloned from one another share every node they had in common.
+//!
+//! Both read the same: [`Trail::iter`] visits the elements from the first, `len`, `last`,
+//! indexing and equality see only the elements. Indexing a shared trail walks back from the
+//! end (O(len − i)); iterate instead where every element is needed.
+
+use std::fmt;
+use std::sync::Arc;
+
+/// A persistent list node: an element and everything before it.
+struct Node<T> {
+    item: T,
+    prev: Option<Arc<Node<T>>>,
+}
+
+impl<T> Drop for Node<T> {
+    /// Free a long list iteratively (the default drop would recurse once per node).
+    fn drop(&mut self) {
+        let mut next = self.prev.take();
+        while let Some(node) = next {
+            match Arc::try_unwrap(node) {
+                Ok(mut n) => next = n.prev.take(),
+                Err(_) => break, // still shared: its other owners keep the rest
+            }
+        }
+    }
+}
+
+/// An append-only sequence, owned or sharing its beginning with other trails (module docs).
+pub struct Trail<T>(Repr<T>);
+
+enum Repr<T> {
+    /// Elements in order, in one buffer.
+    Owned(Vec<T>),
+    /// The last element's node (`None` when empty) and the number of elements.
+    Shared {
+        last: Option<Arc<Node<T>>>,
+        len: usize,
+    },
+}
+
+impl<T> Default for Trail<T> {
+    fn default() -> Self {
+        Trail(Repr::Owned(Vec::new()))
+    }
+}
+
+impl<T: Clone> Clone for Trail<T> {
+    /// O(1) for a shared trail; a copy of the buffer for an owned one.
+    fn clone(&self) -> Self {
+        Trail(match &self.0 {
+            Repr::Owned(v) => Repr::Owned(v.clone()),
+            Repr::Shared { last, len } => Repr::Shared {
+                last: last.clone(),
+                len: *len,
+            },
+        })
+    }
+}
+
+impl<T> From<Vec<T>> for Trail<T> {
+    fn from(v: Vec<T>) -> Self {
+        Trail(Repr::Owned(v))
+    }
+}
+
+impl<T> Trail<T> {
+    /// An empty owned trail.
+    pub fn new() -> Self {
+        Trail(Repr::Owned(Vec::new()))
+    }
+
+    /// An empty owned trail with room for `capacity` elements.
+    pub fn with_capacity(capacity: usize) -> Self {
+        Trail(Repr::Owned(Vec::with_capacity(capacity)))
+    }
+
+    /// An empty shared trail: clones of it and of its extensions share their common elements.
+    pub fn shared() -> Self {
+        Trail(Repr::Shared { last: None, len: 0 })
+    }
+
+    /// Whether clones share elements (see the module docs).
+    pub fn is_shared(&self) -> bool {
+        matches!(self.0, Repr::Shared { .. })
+    }
+
+    pub fn len(&self) -> usize {
+        match &self.0 {
+            Repr::Owned(v) => v.len(),
+            Repr::Shared { len, .. } => *len,
+        }
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Append an element (a new node for a shared trail; its clones do not see it).
+    pub fn push(&mut self, item: T) {
+        match &mut self.0 {
+            Repr::Owned(v) => v.push(item),
+            Repr::Shared { last, len } => {
+                *last = Some(Arc::new(Node {
+                    item,
+                    prev: last.take(),
+                }));
+                *len += 1;
+            }
+        }
+    }
+
+    /// Room for `additional` more elements (owned trails; a shared one has nothing to reserve).
+    pub fn reserve(&mut self, additional: usize) {
+        if let Repr::Owned(v) = &mut self.0 {
+            v.reserve(additional);
+        }
+    }
+
+    /// The last element, O(1).
+    pub fn last(&self) -> Option<&T> {
+        match &self.0 {
+            Repr::Owned(v) => v.last(),
+            Repr::Shared { last, .. } => last.as_deref().map(|n| &n.item),
+        }
+    }
+
+    /// The first element (O(len) for a shared trail).
+    pub fn first(&self) -> Option<&T> {
+        self.get(0)
+    }
+
+    /// Element `i` from the first (O(len − i) for a shared trail).
+    pub fn get(&self, i: usize) -> Option<&T> {
+        match &self.0 {
+            Repr::Owned(v) => v.get(i),
+            Repr::Shared { last, len } => {
+                if i >= *len {
+                    return None;
+                }
+                let mut node = last.as_deref()?;
+                for _ in 0..(*len - 1 - i) {
+                    node = node.prev.as_deref()?;
+                }
+                Some(&node.item)
+            }
+        }
+    }
+
+    /// The elements from the first to the last.
+    pub fn iter(&self) -> Iter<'_, T> {
+        match &self.0 {
+            Repr::Owned(v) => Iter::Slice(v.iter()),
+            Repr::Shared { last, len } => {
+                // The nodes are linked from the last: collect them, then visit in reverse.
+                let mut nodes = Vec::with_capacity(*len);
+                let mut node = last.as_deref();
+                while let Some(n) = node {
+                    nodes.push(&n.item);
+                    node = n.prev.as_deref();
+                }
+                Iter::Nodes(nodes)
+            }
+        }
+    }
+
+    /// The elements in a `Vec`, first to last.
+    pub fn to_vec(&self) -> Vec<T>
+    where
+        T: Clone,
+    {
+        self.iter().cloned().collect()
+    }
+}
+
+impl<T> std::ops::Index<usize> for Trail<T> {
+    type Output = T;
+    fn index(&self, i: usize) -> &T {
+        let len = self.len();
+        self.get(i)
+            .unwrap_or_else(|| panic!("index {i} out of range for a trail of length {len}"))
+    }
+}
+
+/// The iterator of [`Trail::iter`].
+pub enum Iter<'a, T> {
+    Slice(std::slice::Iter<'a, T>),
+    /// Node elements collected last-first, handed out from the end of the `Vec`.
+    Nodes(Vec<&'a T>),
+}
+
+impl<'a, T> Iterator for Iter<'a, T> {
+    type Item = &'a T;
+    fn next(&mut self) -> Option<&'a T> {
+        match self {
+            Iter::Slice(it) => it.next(),
+            Iter::Nodes(nodes) => nodes.pop(),
+        }
+    }
+    fn size_hint(&self) -> (usize, Option<usize>) {
+        let n = match self {
+            Iter::Slice(it) => it.len(),
+            Iter::Nodes(nodes) => nodes.len(),
+        };
+        (n, Some(n))
+    }
+}
+
+impl<T> ExactSizeIterator for Iter<'_, T> {}
+
+impl<'a, T> IntoIterator for &'a Trail<T> {
+    type Item = &'a T;
+    type IntoIter = Iter<'a, T>;
+    fn into_iter(self) -> Iter<'a, T> {
+        self.iter()
+    }
+}
+
+impl<T> FromIterator<T> for Trail<T> {
+    fn from_iter<I: IntoIterator<Item = T>>(iter: I) -> Self {
+        Trail(Repr::Owned(iter.into_iter().collect()))
+    }
+}
+
+impl<T: PartialEq> PartialEq for Trail<T> {
+    /// Equal elements in the same order (owned and shared trails compare alike).
+    fn eq(&self, other: &Self) -> bool {
+        if let (Repr::Shared { last: a, .. }, Repr::Shared { last: b, .. }) = (&self.0, &other.0) {
+            if let (Some(a), Some(b)) = (a, b) {
+                if Arc::ptr_eq(a, b) {
+                    return true;
+                }
+            }
+        }
+        self.len() == other.len() && self.iter().eq(other.iter())
+    }
+}
+
+impl<T: PartialEq> PartialEq<Vec<T>> for Trail<T> {
+    fn eq(&self, other: &Vec<T>) -> bool {
+        self.len() == other.len() && self.iter().eq(other.iter())
+    }
+}
+
+impl<T: PartialEq> PartialEq<[T]> for Trail<T> {
+    fn eq(&self, other: &[T]) -> bool {
+        self.len() == other.len() && self.iter().eq(other.iter())
+    }
+}
+
+impl<T: fmt::Debug> fmt::Debug for Trail<T> {
+    /// Like a `Vec`: the elements in order.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_list().entries(self.iter()).finish()
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shared_clones_keep_their_own_ends() {
+        let mut a = Trail::shared();
+        for i in 0..5 {
+            a.push(i);
+        }
+        let mut b = a.clone();
+        b.push(10);
+        a.push(20);
+        a.push(21);
+        assert_eq!(a.to_vec(), vec![0, 1, 2, 3, 4, 20, 21]);
+        assert_eq!(b.to_vec(), vec![0, 1, 2, 3, 4, 10]);
+        assert_eq!((a.len(), b.len()), (7, 6));
+        assert_eq!((a[0], a[4], a[6], b[5]), (0, 4, 21, 10));
+        assert_eq!((a.first(), a.last(), a.get(7)), (Some(&0), Some(&21), None));
+        // Equality sees elements only, whatever the storage.
+        assert_eq!(b, Trail::from(vec![0, 1, 2, 3, 4, 10]));
+        assert_ne!(a, b);
+        assert_eq!(b, vec![0, 1, 2, 3, 4, 10]);
+    }
+
+    #[test]
+    fn a_long_shared_trail_drops_without_deep_recursion() {
+        let mut t = Trail::shared();
+        for i in 0..1_000_000u32 {
+            t.push(i);
+        }
+        let keep = t.clone();
+        drop(t);
+        assert_eq!(keep.len(), 1_000_000);
+        assert_eq!(keep.last(), Some(&999_999));
+        drop(keep);
+    }
+}
