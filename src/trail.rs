@@ -146,17 +146,36 @@ impl<T> Trail<T> {
     pub fn get(&self, i: usize) -> Option<&T> {
         match &self.0 {
             Repr::Owned(v) => v.get(i),
-            Repr::Shared { last, len } => {
-                if i >= *len {
-                    return None;
-                }
-                let mut node = last.as_deref()?;
-                for _ in 0..(*len - 1 - i) {
-                    node = node.prev.as_deref()?;
-                }
-                Some(&node.item)
-            }
+            Repr::Shared { .. } => self.node(i).map(|n| &n.item),
         }
+    }
+
+    /// Whether the first `n` elements of `self` and `other` are stored once, shared by both
+    /// (trails cloned from a common beginning of at least `n` elements); always false for owned
+    /// trails when `n > 0`, even if the elements are equal.
+    pub fn shares_beginning(&self, other: &Trail<T>, n: usize) -> bool {
+        if n == 0 {
+            return true;
+        }
+        match (self.node(n - 1), other.node(n - 1)) {
+            (Some(a), Some(b)) => std::ptr::eq(a, b),
+            _ => false,
+        }
+    }
+
+    /// The node holding element `i` of a shared trail.
+    fn node(&self, i: usize) -> Option<&Node<T>> {
+        let Repr::Shared { last, len } = &self.0 else {
+            return None;
+        };
+        if i >= *len {
+            return None;
+        }
+        let mut node = last.as_deref()?;
+        for _ in 0..(*len - 1 - i) {
+            node = node.prev.as_deref()?;
+        }
+        Some(node)
     }
 
     /// The elements from the first to the last.

@@ -6,7 +6,11 @@
 //!   incidence, where each channel's own frame picks the s axis;
 //! * `path::cannot_reach` (skip a sequence without solving) only ever claims sequences that
 //!   `path::solve` rejects, so `arrivals_with` without a failure list finds exactly the arrivals
-//!   of `arrivals`.
+//!   of `arrivals`;
+//! * the far-field walk of a plane wave (`TraceSettings::share_beginnings`: every beginning of a
+//!   sequence traced and propagated once) finds exactly the arrivals and failures of tracing
+//!   every sequence from the source, in the same order, and its reflected orders share the
+//!   records of their common beginning.
 //!
 //! Scenes are random (plates, wedges, films on mirrors and splitters, bounded interfaces,
 //! shields with and without apertures; point, line and plane-wave sources; point and far-field
@@ -334,6 +338,167 @@ proptest! {
                 }
             }
         }
+    }
+}
+
+proptest! {
+    #![proptest_config(config(96))]
+
+    /// A plane wave into the far field: the walk over the sequence tree (shared beginnings)
+    /// equals tracing each sequence from the source, bit for bit — arrivals under both models,
+    /// their order, and every failure with its reason (missed planes, TIR, extents, blockers,
+    /// direction mismatches) — with and without the paper's rules and a failure list.
+    #[test]
+    fn the_far_field_walk_equals_the_one_by_one_trace(seed in any::<u64>()) {
+        let mut d = Draw(seed);
+        let (mut scene, mut st) = scene(&mut d);
+        scene.sources[0].emitter = Emitter::PlaneWave {
+            direction: DVec3::new(d.range(-0.6, 0.6), d.range(-0.1, 0.1), -1.0).normalize(),
+            reference_point: DVec3::new(d.range(-0.03, 0.03), d.range(-0.002, 0.002), 0.01),
+        };
+        for surf in scene.surfaces.iter_mut() {
+            if matches!(surf.extent, Extent::Unbounded) && d.chance(0.4) {
+                // Bounded faces: events outside them, and sequences failing on two counts.
+                let (u, v) = surf.plane.axes(DVec3::X);
+                surf.extent = Extent::Rect {
+                    u,
+                    v,
+                    rect: Rect {
+                        center_uv: [d.range(-0.01, 0.01), 0.0],
+                        half_width_m: d.range(0.002, 0.02),
+                        half_height_m: 0.05,
+                    },
+                };
+            }
+        }
+        if d.chance(0.5) {
+            // A shield between the wave's reference point and the scene, often with a hole.
+            let apertures = if d.chance(0.7) {
+                vec![Rect {
+                    center_uv: [d.range(-0.004, 0.004), 0.0],
+                    half_width_m: d.range(5e-4, 3e-3),
+                    half_height_m: d.range(5e-4, 3e-3),
+                }]
+            } else {
+                Vec::new()
+            };
+            let at = DVec3::new(d.range(-0.01, 0.01), 0.0, d.range(0.001, 0.009));
+            scene.surfaces.push(shield(at, apertures));
+        }
+        st.limits.max_internal_reflections = d.pick(7);
+        st.limits.max_events = 2 * st.limits.max_internal_reflections + 6;
+        let optics = scene.optics(LAMBDA).unwrap();
+        // Far-field directions on both sides, and the specular and straight-through ones.
+        let incident = match scene.sources[0].emitter {
+            Emitter::PlaneWave { direction, .. } => direction,
+            _ => unreachable!(),
+        };
+        let mut targets: Vec<Target> = (0..6)
+            .map(|_| DVec3::new(d.range(-0.6, 0.6), d.range(-0.3, 0.3), if d.chance(0.7) { 1.0 } else { -1.0 }).normalize())
+            .chain([DVec3::new(incident.x, incident.y, -incident.z), incident])
+            .map(|dir| Target::Direction { dir, reference: DVec3::new(0.0, 0.0, 0.02) })
+            .collect();
+        targets.push(Target::Direction { dir: DVec3::Z, reference: DVec3::new(0.001, 0.0, 0.015) });
+        let plan = plan_for(&scene, &optics, &targets, &st);
+        let one_by_one = TraceSettings { share_beginnings: false, ..st };
+        let walk = TraceSettings { share_beginnings: true, ..st };
+        for t in &targets {
+            let want = trace::arrivals(&scene, &optics, &plan, t, &one_by_one);
+            let got = trace::arrivals(&scene, &optics, &plan, t, &walk);
+            prop_assert_eq!(format!("{:?}", got.0), format!("{:?}", want.0), "arrivals at {:?}", t);
+            prop_assert_eq!(format!("{:?}", got.1), format!("{:?}", want.1), "failures at {:?}", t);
+            let quick = trace::arrivals_with(&scene, &optics, &plan, t, &walk, false, None);
+            let plain = trace::arrivals_with(&scene, &optics, &plan, t, &one_by_one, false, None);
+            prop_assert_eq!(format!("{quick:?}"), format!("{plain:?}"), "vector only, no failure list, at {:?}", t);
+        }
+    }
+}
+
+/// A free-standing plate under a plane wave, observed at the specular far-field direction.
+fn airy_plate(theta: f64) -> (Scene, Target) {
+    let mut scene = Scene::new(Medium::vacuum());
+    scene.add_plate(
+        "plate",
+        DVec3::ZERO,
+        DVec3::Z,
+        2e-6,
+        Medium::vacuum(),
+        medium(1.5),
+        Medium::vacuum(),
+    );
+    let (s, c) = theta.sin_cos();
+    scene.sources.push(Source {
+        name: "beam".into(),
+        emitter: Emitter::PlaneWave {
+            direction: DVec3::new(s, 0.0, -c),
+            reference_point: DVec3::new(0.0, 0.0, 0.001),
+        },
+        polarization: Polarization::Unpolarized {
+            reference: DVec3::Y,
+        },
+        intensity: 1.0,
+        coherence_group: 0,
+        coherence_length_m: f64::INFINITY,
+    });
+    let target = Target::Direction {
+        dir: DVec3::new(s, 0.0, c),
+        reference: DVec3::new(0.0, 0.0, 0.001),
+    };
+    (scene, target)
+}
+
+/// The walk's cost is O(1) per reflected order because the orders share what they have in
+/// common: order k + 1's path records (events, points, directions, indices) and its ray's phase
+/// ledger begin with order k's, stored once. Checked for 400 internal reflections (200 orders):
+/// each order's records share all but their last few elements with the next order's, so the
+/// memory of the whole family is O(m), where copies would be O(m²).
+#[test]
+fn the_reflected_orders_share_their_common_beginning() {
+    use EventKind::{Reflect as R, Refract as T};
+    let (scene, target) = airy_plate(60f64.to_radians());
+    let optics = scene.optics(LAMBDA).unwrap();
+    let limits = path::EnumerationLimits {
+        max_internal_reflections: 400,
+        max_events: 806,
+    };
+    let st = TraceSettings {
+        limits,
+        ..TraceSettings::default()
+    };
+    let plan = trace::plan(&scene, &optics, &[DVec3::new(0.0, 0.0, 0.02)], &limits);
+    let (found, _) = trace::arrivals(&scene, &optics, &plan, &target, &st);
+    // Order k ≥ 1: T0 (R1 R0)^(k−1) R1 T0, 2k + 1 events; one channel's arrivals, by order.
+    let mut orders: Vec<&trace::Arrival> = found
+        .iter()
+        .filter(|a| a.channel == scene.sources[0].channels()[0] && a.path.sequence.len() > 1)
+        .collect();
+    orders.sort_by_key(|a| a.path.sequence.len());
+    assert_eq!(orders.len(), 200, "reflected orders 1..=200 arrive");
+    for (k, a) in orders.iter().enumerate() {
+        let want: Vec<Event> = std::iter::once(ev(0, T))
+            .chain((0..2 * k + 1).map(|i| ev(1 - i % 2, R)))
+            .chain([ev(0, T)])
+            .collect();
+        assert_eq!(a.path.sequence, want, "order {}", k + 1);
+    }
+    for pair in orders.windows(2) {
+        let (a, b) = (&pair[0].path, &pair[1].path);
+        // Order k's records without its last event and exit are order k + 1's beginning.
+        let n = a.sequence.len() - 1;
+        assert!(
+            a.sequence.shares_beginning(&b.sequence, n),
+            "sequence of {} events",
+            n + 1
+        );
+        assert!(a.points.shares_beginning(&b.points, n + 1), "points");
+        assert!(a.dirs.shares_beginning(&b.dirs, n + 1), "directions");
+        assert!(a.indices.shares_beginning(&b.indices, n + 1), "indices");
+        // Ledger: a path and an interaction entry per shared event.
+        let (la, lb) = (
+            &pair[0].vector.ledger.entries,
+            &pair[1].vector.ledger.entries,
+        );
+        assert!(la.shares_beginning(lb, 2 * n), "ledger");
     }
 }
 
