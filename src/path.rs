@@ -214,6 +214,7 @@ struct PlaneStep {
 }
 
 /// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`.
+#[inline(always)]
 fn step_planes(
     scene: &Scene,
     optics: &SceneOptics,
@@ -910,6 +911,7 @@ pub fn solve(
 }
 
 /// Whether event `k` (`ev` at `x`) lies outside its surface's extent.
+#[inline]
 fn out_of_extent(scene: &Scene, k: usize, ev: Event, x: DVec3) -> Option<PathError> {
     (!scene.surfaces[ev.surface].interacts(x)).then_some(PathError::OutOfExtent {
         event: k,
@@ -920,6 +922,7 @@ fn out_of_extent(scene: &Scene, k: usize, ev: Event, x: DVec3) -> Option<PathErr
 /// Whether segment `i` (from `a` along `d` over `len` m; `f64::INFINITY` for the far field's
 /// last) crosses a blocker or an interacting surface other than its end surfaces `ends` (the
 /// events before and after it).
+#[inline(always)]
 fn segment_blocked(
     scene: &Scene,
     i: usize,

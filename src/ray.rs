@@ -213,6 +213,7 @@ impl Ray {
 
     /// Move the ray's origin to `point` along its direction, adding n·L to the optical path
     /// and a ledger entry. `point` must lie ahead on the ray.
+    #[inline(always)]
     pub fn advance_to(&mut self, point: DVec3) {
         let length_m = (point - self.origin).length();
         self.optical_path_m += self.index * length_m;

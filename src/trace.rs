@@ -122,6 +122,7 @@ pub struct Failure {
 /// `e_ref = field_reference(channel.reference, d0)`; `spreading` is the path's S² and `ledger`
 /// the (empty) record the ray starts with.
 #[allow(clippy::too_many_arguments)]
+#[inline]
 fn launch_ray_with(
     optics: &SceneOptics,
     channel: &Channel,
@@ -171,6 +172,7 @@ fn launch_ray(
 }
 
 /// The interface met by event `ev` at `point`.
+#[inline]
 fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> InterfaceHit {
     let surf = &scene.surfaces[ev.surface];
     InterfaceHit {
@@ -183,6 +185,7 @@ fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> Inter
 }
 
 /// The events of a solved path with the points where they happen.
+#[inline]
 fn events_of(path: &SolvedPath) -> impl Iterator<Item = (Event, DVec3)> + '_ {
     path.sequence
         .iter()
@@ -192,6 +195,7 @@ fn events_of(path: &SolvedPath) -> impl Iterator<Item = (Event, DVec3)> + '_ {
 
 /// The last leg of a ray after its last event: to the target point, or to the far-field
 /// wavefront; then the paper's coherence-length rule.
+#[inline]
 fn end_ray(ray: &mut Ray, target: &Target, coherence_length_m: f64) {
     match target {
         Target::Point(p) => ray.advance_to(*p),
@@ -241,8 +245,9 @@ pub fn propagate(
     ray
 }
 
-/// The most channels carried together (a source has one or two).
-const SHARED_CHANNELS: usize = 4;
+/// The most channels carried together (a source has one or two; the rays are moved by value,
+/// so room for more would cost every path).
+const SHARED_CHANNELS: usize = 2;
 
 /// The rays of a source's channels along a path. The channels differ only in polarization, so
 /// they travel together: the last channel's ray in full and the others' polarizations riding
@@ -261,6 +266,7 @@ enum ChannelRays {
 impl ChannelRays {
     /// The channels' rays at the launch `(p0, d0, spreading)`, each ledger starting as
     /// `ledger()` gives it (empty: owned with room reserved, or shared).
+    #[inline]
     fn launch(
         optics: &SceneOptics,
         channels: &[Channel],
@@ -288,7 +294,8 @@ impl ChannelRays {
         }
         // The field reference is shared too (bit for bit: one reference gives one projection).
         let e_ref = field_reference(last.reference, d0);
-        let launch = |ch: &Channel| {
+        // Only the lead's ledger is kept (the others' frames ride along without one).
+        let launch = |ch: &Channel, ledger| {
             let same = ch.reference.to_array().map(f64::to_bits)
                 == last.reference.to_array().map(f64::to_bits);
             let e = if same {
@@ -296,14 +303,14 @@ impl ChannelRays {
             } else {
                 field_reference(ch.reference, d0)
             };
-            launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger())
+            launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger)
         };
         let mut frames = [JonesFrame::default(); SHARED_CHANNELS - 1];
         for (f, ch) in frames.iter_mut().zip(rest) {
-            *f = JonesFrame::of(&launch(ch));
+            *f = JonesFrame::of(&launch(ch, Trail::new()));
         }
         ChannelRays::Together {
-            lead: launch(last),
+            lead: launch(last, ledger()),
             frames,
         }
     }
@@ -311,6 +318,7 @@ impl ChannelRays {
     /// Through the interaction at `hit` along the followed branch (`reflect`: the reflected
     /// one); `others` is the number of channels besides the lead. False, with the rays partly
     /// updated, where the branch does not exist ([`interact_along`] gives `None`).
+    #[inline]
     fn interact(
         &mut self,
         hit: &InterfaceHit,
@@ -329,6 +337,7 @@ impl ChannelRays {
     }
 
     /// The last leg to `target` ([`end_ray`]); `emit(k, ray)` receives channel k's ray, in order.
+    #[inline]
     fn emit(
         self,
         channels: &[Channel],
@@ -362,6 +371,7 @@ impl ChannelRays {
 
 /// The rays of every channel of a source carried along a solved path ([`ChannelRays`]), up to
 /// the last event.
+#[inline]
 fn carry(
     scene: &Scene,
     optics: &SceneOptics,
@@ -500,6 +510,7 @@ struct Recorder<'a, 'f> {
 impl Recorder<'_, '_> {
     /// The channels' arrivals along `path`, from their rays after its last event under the
     /// vector model and, when traced, the paper's rules.
+    #[inline]
     fn arrive(&mut self, path: Arc<SolvedPath>, vector: ChannelRays, paper: Option<ChannelRays>) {
         let first = self.found.len();
         let (found, channels, si) = (&mut *self.found, self.channels, self.source);

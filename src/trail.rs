@@ -71,6 +71,7 @@ impl<T: Clone> Clone for Trail<T> {
 }
 
 impl<T> From<Vec<T>> for Trail<T> {
+    #[inline]
     fn from(v: Vec<T>) -> Self {
         Trail(Repr::Owned(v))
     }
@@ -83,6 +84,7 @@ impl<T> Trail<T> {
     }
 
     /// An empty owned trail with room for `capacity` elements.
+    #[inline]
     pub fn with_capacity(capacity: usize) -> Self {
         Trail(Repr::Owned(Vec::with_capacity(capacity)))
     }
@@ -97,6 +99,7 @@ impl<T> Trail<T> {
         matches!(self.0, Repr::Shared { .. })
     }
 
+    #[inline]
     pub fn len(&self) -> usize {
         match &self.0 {
             Repr::Owned(v) => v.len(),
@@ -104,11 +107,13 @@ impl<T> Trail<T> {
         }
     }
 
+    #[inline]
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }
 
     /// Append an element (a new node for a shared trail; its clones do not see it).
+    #[inline]
     pub fn push(&mut self, item: T) {
         match &mut self.0 {
             Repr::Owned(v) => v.push(item),
@@ -130,6 +135,7 @@ impl<T> Trail<T> {
     }
 
     /// The last element, O(1).
+    #[inline]
     pub fn last(&self) -> Option<&T> {
         match &self.0 {
             Repr::Owned(v) => v.last(),
@@ -143,6 +149,7 @@ impl<T> Trail<T> {
     }
 
     /// Element `i` from the first (O(len − i) for a shared trail).
+    #[inline]
     pub fn get(&self, i: usize) -> Option<&T> {
         match &self.0 {
             Repr::Owned(v) => v.get(i),
@@ -179,6 +186,7 @@ impl<T> Trail<T> {
     }
 
     /// The elements from the first to the last.
+    #[inline]
     pub fn iter(&self) -> Iter<'_, T> {
         match &self.0 {
             Repr::Owned(v) => Iter::Slice(v.iter()),
@@ -206,6 +214,7 @@ impl<T> Trail<T> {
 
 impl<T> std::ops::Index<usize> for Trail<T> {
     type Output = T;
+    #[inline]
     fn index(&self, i: usize) -> &T {
         let len = self.len();
         self.get(i)
@@ -222,6 +231,7 @@ pub enum Iter<'a, T> {
 
 impl<'a, T> Iterator for Iter<'a, T> {
     type Item = &'a T;
+    #[inline]
     fn next(&mut self) -> Option<&'a T> {
         match self {
             Iter::Slice(it) => it.next(),
