@@ -8,6 +8,7 @@ use super::spec::{Light, Observer, Probe, ReferenceModel};
 use crate::accumulate::Accumulator;
 use crate::fidelity::{self, Fidelity, SceneNeeds};
 use crate::path::{EnumerationLimits, SolveOptions, Target};
+use crate::source::Emitter;
 use crate::trace::{self, Arrival, TraceSettings};
 use glam::DVec3;
 use rayon::prelude::*;
@@ -194,12 +195,15 @@ fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usi
 pub const MAX_PATH_EVENTS: f64 = 1.0e9;
 
 /// The tracing work of a case, checked before anything runs: Σ over probe points of (spectral
-/// samples) × (m + 2)², m the internal-reflection budget at the point (the Airy tail rule may
-/// raise it near grazing incidence). (m + 2)² bounds the surface events of all sequences of a
-/// plane-parallel plate with up to m internal reflections (about m/2 orders of up to m + 2
-/// events each), and tracing time is proportional to the events. A case over
-/// [`MAX_PATH_EVENTS`] is refused with an error naming the key that drives it; so is a tail
-/// bound that needs more internal reflections than the cap.
+/// samples) × (path events per point), m the internal-reflection budget at the point (the Airy
+/// tail rule may raise it near grazing incidence), and tracing time is proportional to the
+/// events. Plane waves observed in the far field are walked as a tree of shared beginnings
+/// (`trace`'s far-field walk: each internal reflection adds a reflected and a transmitted
+/// branch), 2(m + 2) events; any other point traces every sequence from its source, and
+/// (m + 2)² bounds the events of all sequences of a plane-parallel plate with up to m internal
+/// reflections (about m/2 orders of up to m + 2 events each). A case over [`MAX_PATH_EVENTS`] is
+/// refused with an error naming the key that drives it; so is a tail bound that needs more
+/// internal reflections than the cap.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;
     let mut events = 0.0;
@@ -210,7 +214,14 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
         let spectrum = build::spectrum(&spec.light, &pt.overrides);
         let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
         worst = worst.max(internal);
-        events += spectrum.len() as f64 * ((internal + 2) as f64).powi(2);
+        let walked = !matches!(pt.observer, Observer::Point { .. })
+            && built
+                .scene
+                .sources
+                .iter()
+                .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
+        let m = (internal + 2) as f64;
+        events += spectrum.len() as f64 * if walked { 2.0 * m } else { m * m };
     }
     if events > MAX_PATH_EVENTS {
         let key = if spec.trace.airy_tail_epsilon.is_some() {
@@ -223,9 +234,10 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
             key,
             format!(
                 "this case would trace about {events:.2e} path events (probe points × spectral \
-                 samples × (internal reflections + 2)², up to {worst} internal reflections), more \
-                 than the work cap of {MAX_PATH_EVENTS:.0e}: use fewer probe points or spectral \
-                 samples, or fewer internal reflections"
+                 samples × path events per point: (internal reflections + 2)², or twice \
+                 (internal reflections + 2) for plane waves in the far field; up to {worst} \
+                 internal reflections), more than the work cap of {MAX_PATH_EVENTS:.0e}: use \
+                 fewer probe points or spectral samples, or fewer internal reflections"
             ),
         ));
     }
