@@ -34,14 +34,23 @@ pub struct SequenceTree {
 /// A tree under construction: children found in any order, deduplicated.
 #[derive(Clone, Debug, Default)]
 pub struct TreeBuilder {
-    /// (event, candidate, children as (event, node)); node 0 is the root.
-    nodes: Vec<(Option<Event>, bool, Vec<(Event, usize)>)>,
+    /// Node 0 is the root.
+    nodes: Vec<BuildNode>,
+}
+
+/// A node of a [`TreeBuilder`].
+#[derive(Clone, Debug, Default)]
+struct BuildNode {
+    event: Option<Event>,
+    candidate: bool,
+    /// (event, node) of each child, in the order found.
+    children: Vec<(Event, usize)>,
 }
 
 impl TreeBuilder {
     pub fn new() -> Self {
         TreeBuilder {
-            nodes: vec![(None, false, Vec::new())],
+            nodes: vec![BuildNode::default()],
         }
     }
 
@@ -50,24 +59,28 @@ impl TreeBuilder {
 
     /// The child of `node` one `event` further, created if new.
     pub fn child(&mut self, node: usize, event: Event) -> usize {
-        if let Some(&(_, c)) = self.nodes[node].2.iter().find(|(e, _)| *e == event) {
+        let children = &self.nodes[node].children;
+        if let Some(&(_, c)) = children.iter().find(|(e, _)| *e == event) {
             return c;
         }
         let c = self.nodes.len();
-        self.nodes.push((Some(event), false, Vec::new()));
-        self.nodes[node].2.push((event, c));
+        self.nodes.push(BuildNode {
+            event: Some(event),
+            ..BuildNode::default()
+        });
+        self.nodes[node].children.push((event, c));
         c
     }
 
     /// Mark `node`'s sequence as a candidate.
     pub fn mark(&mut self, node: usize) {
-        self.nodes[node].1 = true;
+        self.nodes[node].candidate = true;
     }
 
     /// The finished tree, nodes in sorted depth-first order.
     pub fn finish(mut self) -> SequenceTree {
         for n in &mut self.nodes {
-            n.2.sort_unstable();
+            n.children.sort_unstable();
         }
         let mut nodes: Vec<TreeNode> = Vec::with_capacity(self.nodes.len());
         // Iterative pre-order: (builder node, depth); a node's subtree end is known when the
@@ -79,15 +92,15 @@ impl TreeBuilder {
                 let i = open.pop().unwrap();
                 nodes[i].subtree_end = nodes.len();
             }
-            let (event, candidate, children) = &self.nodes[b];
+            let n = &self.nodes[b];
             open.push(nodes.len());
             nodes.push(TreeNode {
-                event: *event,
+                event: n.event,
                 depth,
-                candidate: *candidate,
+                candidate: n.candidate,
                 subtree_end: 0,
             });
-            stack.extend(children.iter().rev().map(|&(_, c)| (c, depth + 1)));
+            stack.extend(n.children.iter().rev().map(|&(_, c)| (c, depth + 1)));
         }
         for i in open {
             nodes[i].subtree_end = nodes.len();

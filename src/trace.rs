@@ -254,6 +254,9 @@ const SHARED_CHANNELS: usize = 2;
 /// along, each interaction's geometry, coefficients and ledger entry computed once
 /// ([`interact_along_shared`]). Channels whose coherence ids could part (some start incoherent,
 /// some not), or more than [`SHARED_CHANNELS`], travel apart, each as [`propagate`] carries it.
+// `Together` is large (a ray and a frame) and moved by value; boxing it would cost an
+// allocation per path in every render.
+#[allow(clippy::large_enum_variant)]
 #[derive(Clone)]
 enum ChannelRays {
     Together {

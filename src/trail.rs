@@ -266,12 +266,11 @@ impl<T> FromIterator<T> for Trail<T> {
 impl<T: PartialEq> PartialEq for Trail<T> {
     /// Equal elements in the same order (owned and shared trails compare alike).
     fn eq(&self, other: &Self) -> bool {
-        if let (Repr::Shared { last: a, .. }, Repr::Shared { last: b, .. }) = (&self.0, &other.0) {
-            if let (Some(a), Some(b)) = (a, b) {
-                if Arc::ptr_eq(a, b) {
-                    return true;
-                }
-            }
+        if let (Repr::Shared { last: Some(a), .. }, Repr::Shared { last: Some(b), .. }) =
+            (&self.0, &other.0)
+            && Arc::ptr_eq(a, b)
+        {
+            return true;
         }
         self.len() == other.len() && self.iter().eq(other.iter())
     }

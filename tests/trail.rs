@@ -59,7 +59,8 @@ proptest! {
             }
             prop_assert_eq!(t.get(m.len()), None);
             prop_assert!(t == m, "Trail == Vec");
-            prop_assert!(*t == Trail::from(m.clone()), "shared == owned with the same elements");
+            let owned = Trail::from(m.clone());
+            prop_assert!(*t == owned, "shared == owned with the same elements");
             prop_assert_eq!(format!("{t:?}"), format!("{m:?}"));
             prop_assert_eq!(t.is_shared(), shared);
         }
