@@ -14,12 +14,14 @@
 //!
 //! Run: `cargo bench --bench airy`
 
+#[path = "../tests/support/airy_plate.rs"]
+mod airy_plate;
+
+use airy_plate::airy_plate;
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use fringe::analytic::plate::{Film, Pol};
-use fringe::material::Medium;
 use fringe::path::{EnumerationLimits, Target};
 use fringe::scene::Scene;
-use fringe::source::{Emitter, Polarization, Source};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
 use std::hint::black_box;
@@ -27,39 +29,6 @@ use std::time::Duration;
 
 const LAMBDA: f64 = 550e-9;
 const THETA_DEG: f64 = 85.0;
-
-/// The plate, the wave and the specular far-field direction.
-fn airy_plate() -> (Scene, Target) {
-    let mut scene = Scene::new(Medium::vacuum());
-    scene.add_plate(
-        "plate",
-        DVec3::ZERO,
-        DVec3::Z,
-        2e-6,
-        Medium::vacuum(),
-        Medium::constant("glass", 1.5),
-        Medium::vacuum(),
-    );
-    let (s, c) = THETA_DEG.to_radians().sin_cos();
-    scene.sources.push(Source {
-        name: "beam".into(),
-        emitter: Emitter::PlaneWave {
-            direction: DVec3::new(s, 0.0, -c),
-            reference_point: DVec3::new(0.0, 0.0, 0.001),
-        },
-        polarization: Polarization::Unpolarized {
-            reference: DVec3::Y,
-        },
-        intensity: 1.0,
-        coherence_group: 0,
-        coherence_length_m: f64::INFINITY,
-    });
-    let target = Target::Direction {
-        dir: DVec3::new(s, 0.0, c),
-        reference: DVec3::new(0.0, 0.0, 0.001),
-    };
-    (scene, target)
-}
 
 /// Settings for `m` internal reflections (the case runner's event budget).
 fn settings(m: usize, share_beginnings: bool) -> TraceSettings {
@@ -81,7 +50,7 @@ fn point(scene: &Scene, target: &Target, st: &TraceSettings) -> usize {
 }
 
 fn bench(c: &mut Criterion) {
-    let (scene, target) = airy_plate();
+    let (scene, target) = airy_plate(THETA_DEG.to_radians());
     let film = Film {
         n1: 1.0,
         n2: 1.5,

@@ -19,6 +19,8 @@
 //! zeros), so "equal" means equal bit for bit.
 
 mod common;
+#[path = "support/airy_plate.rs"]
+mod support_airy_plate;
 
 use common::config;
 use fringe::geometry::{Extent, Plane, Rect};
@@ -30,6 +32,7 @@ use fringe::source::{Emitter, Polarization, Source};
 use fringe::trace::{self, Plan, TraceSettings};
 use glam::DVec3;
 use proptest::prelude::*;
+use support_airy_plate::airy_plate;
 
 const LAMBDA: f64 = 550e-9;
 
@@ -412,39 +415,6 @@ proptest! {
             prop_assert_eq!(format!("{quick:?}"), format!("{plain:?}"), "vector only, no failure list, at {:?}", t);
         }
     }
-}
-
-/// A free-standing plate under a plane wave, observed at the specular far-field direction.
-fn airy_plate(theta: f64) -> (Scene, Target) {
-    let mut scene = Scene::new(Medium::vacuum());
-    scene.add_plate(
-        "plate",
-        DVec3::ZERO,
-        DVec3::Z,
-        2e-6,
-        Medium::vacuum(),
-        medium(1.5),
-        Medium::vacuum(),
-    );
-    let (s, c) = theta.sin_cos();
-    scene.sources.push(Source {
-        name: "beam".into(),
-        emitter: Emitter::PlaneWave {
-            direction: DVec3::new(s, 0.0, -c),
-            reference_point: DVec3::new(0.0, 0.0, 0.001),
-        },
-        polarization: Polarization::Unpolarized {
-            reference: DVec3::Y,
-        },
-        intensity: 1.0,
-        coherence_group: 0,
-        coherence_length_m: f64::INFINITY,
-    });
-    let target = Target::Direction {
-        dir: DVec3::new(s, 0.0, c),
-        reference: DVec3::new(0.0, 0.0, 0.001),
-    };
-    (scene, target)
 }
 
 /// The walk's cost is O(1) per reflected order because the orders share what they have in

@@ -1,0 +1,43 @@
+//! The Airy plate under a plane wave, shared by `tests/fast_paths.rs` and `benches/airy.rs`: a
+//! free-standing plate (n = 1.5, 2 µm, top face at z = 0, normal +z) in vacuum, lit by an
+//! unpolarized plane wave at `theta` from the normal in the x–z plane, observed at the specular
+//! far-field direction (wavefronts referred to (0, 0, 1 mm)).
+
+use fringe::material::Medium;
+use fringe::path::Target;
+use fringe::scene::Scene;
+use fringe::source::{Emitter, Polarization, Source};
+use glam::DVec3;
+
+/// The scene and its specular far-field target.
+pub fn airy_plate(theta: f64) -> (Scene, Target) {
+    let mut scene = Scene::new(Medium::vacuum());
+    scene.add_plate(
+        "plate",
+        DVec3::ZERO,
+        DVec3::Z,
+        2e-6,
+        Medium::vacuum(),
+        Medium::constant("glass", 1.5),
+        Medium::vacuum(),
+    );
+    let (s, c) = theta.sin_cos();
+    scene.sources.push(Source {
+        name: "beam".into(),
+        emitter: Emitter::PlaneWave {
+            direction: DVec3::new(s, 0.0, -c),
+            reference_point: DVec3::new(0.0, 0.0, 0.001),
+        },
+        polarization: Polarization::Unpolarized {
+            reference: DVec3::Y,
+        },
+        intensity: 1.0,
+        coherence_group: 0,
+        coherence_length_m: f64::INFINITY,
+    });
+    let target = Target::Direction {
+        dir: DVec3::new(s, 0.0, c),
+        reference: DVec3::new(0.0, 0.0, 0.001),
+    };
+    (scene, target)
+}
