@@ -10,6 +10,10 @@
 //! missing path (TIR on a refraction event, a surface missed or outside its extent, P behind
 //! the ray, a blocking shield or an unlisted surface on the way) is an error with a reason.
 //!
+//! A plane wave into the far field needs no solve (every launch is equivalent): [`solve`] traces
+//! it from the wave's reference point, and [`FarFieldPaths`] does the same one event at a time,
+//! so sequences that share a beginning trace it once.
+//!
 //! Geometric spreading (optional): the ray-tube cross-section at P per unit launch measure is
 //! |det J|·|d_f·d_ref| from the same Jacobian, so the field amplitude factor is
 //! `S² = (n_src/n_P)·Π_refractions(n2 cos θt/(n1 cos θi))·(launch measure)/(dA⊥)`; for a point

@@ -1,6 +1,11 @@
 //! Exact tracing at a point: every source channel along every surface sequence that reaches
 //! the target, each ray carried through the real interactions (with its ledger), then turned
 //! into accumulation-core contributions at any rung of the fidelity ladder.
+//!
+//! The sequences of a source are a tree of shared beginnings ([`SequenceTree`]). A plane wave
+//! observed in the far field walks it depth first (`far_field_walk`): each beginning is traced
+//! and its rays propagated once, so a plate's m internal reflections cost O(m), not O(m²); every
+//! other source and target solves each sequence on its own.
 
 use crate::accumulate::{Accumulator, Contribution};
 use crate::fidelity::{Fidelity, SceneNeeds};
@@ -403,7 +408,7 @@ fn carry(
 /// The panic message of a solved path whose refraction the ray cannot follow.
 const NO_REFRACTED_RAY: &str = "solved paths only refract where a refracted ray exists";
 
-/// [`propagate`] for every channel of a source along one path, in one pass ([`ChannelRays`]).
+/// [`propagate`] for every channel of a source along one path, in one pass (`ChannelRays`).
 /// `emit(k, ray)` receives channel k's ray, in order; each is bitwise the ray [`propagate`]
 /// gives that channel.
 #[allow(clippy::too_many_arguments)]
@@ -451,8 +456,8 @@ pub fn arrivals(
 /// work), with the failed sequences pushed to `failed` when given. Without a failure list,
 /// sequences that [`path::cannot_reach`] rules out are not solved at all (the arrivals are the
 /// same; only the reasons would be missing). The channels of a source are carried along each
-/// path together ([`ChannelRays`]); a plane wave's far-field sequences are walked as a tree
-/// ([`far_field_walk`]) unless `settings.share_beginnings` is off.
+/// path together (`ChannelRays`); a plane wave's far-field sequences are walked as a tree
+/// (`far_field_walk`) unless `settings.share_beginnings` is off.
 pub fn arrivals_with(
     scene: &Scene,
     optics: &SceneOptics,
