@@ -10,7 +10,7 @@
 //! (`Event`'s `Ord`: by surface, reflection before refraction): this is exactly the sorted order
 //! of the sequences as lists (a beginning sorts before its extensions).
 
-use crate::path::{Event, Sequence};
+use crate::path::{Event, EventKind, Sequence};
 
 /// One node of a [`SequenceTree`]: the sequence from the root to here.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -29,6 +29,8 @@ pub struct TreeNode {
 #[derive(Clone, Debug, PartialEq, Eq)]
 pub struct SequenceTree {
     nodes: Vec<TreeNode>,
+    /// The most events of any node.
+    depth: usize,
 }
 
 /// A tree under construction: children found in any order, deduplicated.
@@ -105,7 +107,8 @@ impl TreeBuilder {
         for i in open {
             nodes[i].subtree_end = nodes.len();
         }
-        SequenceTree { nodes }
+        let depth = nodes.iter().map(|n| n.depth).max().unwrap_or(0);
+        SequenceTree { nodes, depth }
     }
 }
 
@@ -137,14 +140,28 @@ impl SequenceTree {
     }
 
     /// Call `visit` with every candidate sequence in sorted order (O(1) per node: one sequence
-    /// buffer is grown and cut back along the walk).
+    /// buffer, on the stack for trees up to 32 events deep, is overwritten along the walk).
     pub fn for_each(&self, mut visit: impl FnMut(&[Event])) {
-        let mut seq = Vec::new();
+        const ON_STACK: usize = 32;
+        let depth = self.depth;
+        let filler = Event {
+            surface: 0,
+            kind: EventKind::Reflect,
+        };
+        let mut stack = [filler; ON_STACK];
+        let mut heap = Vec::new();
+        let seq: &mut [Event] = if depth <= ON_STACK {
+            &mut stack
+        } else {
+            heap.resize(depth, filler);
+            &mut heap
+        };
         for n in &self.nodes {
-            seq.truncate(n.depth.saturating_sub(1));
-            seq.extend(n.event);
+            if let Some(ev) = n.event {
+                seq[n.depth - 1] = ev;
+            }
             if n.candidate {
-                visit(&seq);
+                visit(&seq[..n.depth]);
             }
         }
     }
@@ -160,7 +177,6 @@ impl SequenceTree {
 #[cfg(test)]
 mod tests {
     use super::*;
-    use crate::path::EventKind;
 
     fn ev(surface: usize, reflect: bool) -> Event {
         Event {
@@ -200,5 +216,21 @@ mod tests {
             candidates,
             vec![true, true, false, false, false, false, true, true, true]
         );
+    }
+
+    #[test]
+    fn deep_trees_walk_like_shallow_ones() {
+        // Zig-zags of 1..=45 events and their transmitted ends: deeper than the stack buffer.
+        let zigzag = |k: usize| (0..k).map(|i| ev(i % 2, true)).collect::<Vec<_>>();
+        let mut given: Vec<Sequence> = (1..=45).map(zigzag).collect();
+        given.extend((1..=44).map(|k| {
+            let mut s = zigzag(k);
+            s.push(ev(k % 2, false));
+            s
+        }));
+        let tree = SequenceTree::from_sequences(given.clone());
+        given.sort();
+        assert_eq!(tree.sequences(), given);
+        assert_eq!(tree.nodes().iter().map(|n| n.depth).max(), Some(45));
     }
 }
