@@ -958,7 +958,7 @@ fn segment_blocked(
 /// The optical path from the exit point `x` (direction `d`, index `n`) to the far-field
 /// wavefront through `reference`: −n·d·(x − reference).
 fn to_far_wavefront(x: DVec3, d: DVec3, n: f64, reference: DVec3) -> f64 {
-    n * d.dot(x - reference)
+    -(n * d.dot(x - reference))
 }
 
 /// Validate extents and blockers and assemble the [`SolvedPath`].
@@ -1010,7 +1010,7 @@ fn finish(
             *g.dirs.last().unwrap(),
             *g.indices.last().unwrap(),
         );
-        optical_path_m -= to_far_wavefront(x, d, n, *reference);
+        optical_path_m += to_far_wavefront(x, d, n, *reference);
     }
     Ok(SolvedPath {
         sequence: seq.to_vec().into(),
@@ -1081,20 +1081,11 @@ impl<'a> FarFieldPaths<'a> {
         direction: DVec3,
         reference_point: DVec3,
     ) -> Self {
-        let push = |x| {
-            let mut t = Trail::shared();
-            t.push(x);
-            t
-        };
         let root = Beginning {
             sequence: Trail::shared(),
-            points: push(reference_point),
-            dirs: push(direction.normalize()),
-            indices: {
-                let mut t = Trail::shared();
-                t.push(optics.ambient_index);
-                t
-            },
+            points: Trail::shared_of(reference_point),
+            dirs: Trail::shared_of(direction.normalize()),
+            indices: Trail::shared_of(optics.ambient_index),
             denser_reflections: 0,
             has_tir: false,
             optical_path_m: -0.0,
@@ -1199,7 +1190,7 @@ impl<'a> FarFieldPaths<'a> {
             points: b.points.clone(),
             dirs: b.dirs.clone(),
             indices: b.indices.clone(),
-            optical_path_m: b.optical_path_m - to_far_wavefront(x, d, n, reference),
+            optical_path_m: b.optical_path_m + to_far_wavefront(x, d, n, reference),
             landing_error,
             iterations: 0,
             denser_reflections: b.denser_reflections,

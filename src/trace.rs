@@ -577,18 +577,15 @@ fn far_field_walk(
         &[CoefficientModel::Vector]
     };
     // Per model, `rays[m][k]`: the channels' rays after k events of the current beginning;
-    // entries from `valid` on belong to an earlier beginning.
-    let launch = |_| {
-        let start = paths.launch();
-        vec![ChannelRays::launch(
-            optics,
-            out.channels,
-            out.coherence_length_m,
-            start,
-            Trail::shared,
-        )]
-    };
-    let mut rays: Vec<Vec<ChannelRays>> = models.iter().map(launch).collect();
+    // entries from `valid` on belong to an earlier beginning. All start as the launched rays.
+    let launched = ChannelRays::launch(
+        optics,
+        out.channels,
+        out.coherence_length_m,
+        paths.launch(),
+        Trail::shared,
+    );
+    let mut rays = vec![vec![launched]; models.len()];
     let mut valid = 1;
     let others = out.channels.len().saturating_sub(1);
     let nodes = tree.nodes();

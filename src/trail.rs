@@ -94,6 +94,13 @@ impl<T> Trail<T> {
         Trail(Repr::Shared { last: None, len: 0 })
     }
 
+    /// A shared trail of one element.
+    pub fn shared_of(item: T) -> Self {
+        let mut t = Trail::shared();
+        t.push(item);
+        t
+    }
+
     /// Whether clones share elements (see the module docs).
     pub fn is_shared(&self) -> bool {
         matches!(self.0, Repr::Shared { .. })
