@@ -14,7 +14,7 @@
 //!
 //! Run: `cargo bench --bench airy`
 
-#[path = "../tests/support/airy_plate.rs"]
+#[path = "../tests/suite/support/airy_plate.rs"]
 mod airy_plate;
 
 use airy_plate::airy_plate;

@@ -10,8 +10,7 @@
 //!   schema's caps equal `load::limits`; and every bad case that serde rejects for its shape the
 //!   schema rejects too.
 
-#[path = "support/schema.rs"]
-mod schema;
+use crate::support::schema;
 
 use fringe::case::load::{self, limits};
 use fringe::case::run;

@@ -12,10 +12,8 @@
 //! case_parser_props` for a long run. Crashing inputs found this way are kept in
 //! tests/bad_cases/.
 
-#[path = "support/library.rs"]
-mod library;
-#[path = "support/schema.rs"]
-mod schema;
+use crate::support::library;
+use crate::support::schema;
 
 use fringe::case::build::{self, Overrides};
 use fringe::case::load::{self, limits};

@@ -58,7 +58,7 @@ fn cmf_interpolates_linearly_and_is_zero_outside_360_830_nm() {
     // Expected: halfway between the table rows 600 nm (x̄ 1.0622) and 601 nm (x̄ 1.0567744),
     // read from the data file by hand; the CIE 1931 table ends at 360 and 830 nm.
     let cmf = Cmf::cie1931_2deg();
-    let csv = include_str!("../data/cie1931_2deg.csv");
+    let csv = include_str!("../../data/cie1931_2deg.csv");
     let row = |nm: &str| -> f64 {
         let line = csv
             .lines()
@@ -818,7 +818,7 @@ fn newton_colours_match_colour_science() {
     // tests/data/newton_reference_colour_science.csv: produced by colour-science (see its
     // header and crosscheck/newton_crosscheck.py) from its own sd_to_XYZ / XYZ_to_sRGB pipeline.
     // Measured when written: max ΔE2000 = 9.2e-5 (the rest is trapezoid vs rectangle weights).
-    let csv = include_str!("data/newton_reference_colour_science.csv");
+    let csv = include_str!("../data/newton_reference_colour_science.csv");
     assert!(
         csv.starts_with("# ") && csv.contains("colour-science"),
         "header must name its source"

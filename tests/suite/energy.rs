@@ -21,7 +21,7 @@
 //! P_left = T12 · R23^{⌈(N+1)/2⌉} · R21^{⌊(N+1)/2⌋} (the beam still inside the plate after N
 //! internal reflections: it alternately meets the bottom and the top, starting at the bottom).
 
-mod common;
+use crate::common;
 
 use common::*;
 use fringe::fidelity::Fidelity;

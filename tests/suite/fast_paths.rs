@@ -18,9 +18,8 @@
 //! Comparisons are of `Debug` text, which prints every f64 exactly (shortest round trip, signed
 //! zeros), so "equal" means equal bit for bit.
 
-mod common;
-#[path = "support/airy_plate.rs"]
-mod support_airy_plate;
+use crate::common;
+use crate::support::airy_plate as support_airy_plate;
 
 use common::config;
 use fringe::geometry::{Extent, Plane, Rect};

@@ -29,7 +29,7 @@
 //! at 48.6°: arg r_s = −0.97888669715553188…, arg r_p = −1.76395622863189798…,
 //! Δ = −0.78506953147636609660 rad (−44.98117077790871°).
 
-mod common;
+use crate::common;
 
 use common::*;
 use fringe::fresnel::{brewster_angle, critical_angle, fresnel, ideal_mirror};

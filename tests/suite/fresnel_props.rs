@@ -8,7 +8,7 @@
 //! (stated at each place) where the formulas themselves lose digits (near grazing incidence and
 //! near the critical angle, where cos θt = sqrt(small)).
 
-mod common;
+use crate::common;
 
 use common::*;
 use fringe::fresnel::{

@@ -7,7 +7,7 @@
 //! ((n1 − n2)/(n1 + n2)·E, by hand from P1/P2 with p_r = −p_i) and frame identities are exact
 //! physics or geometry. The code's output is never used as an expected value.
 
-mod common;
+use crate::common;
 
 use common::*;
 use fringe::fresnel::s_direction;

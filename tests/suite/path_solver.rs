@@ -7,7 +7,7 @@
 //! bisection here; spreading against 1/r², 1/|P − S'|² and a closed form for refraction at a
 //! plane derived by hand (see `refraction_spreading_matches_closed_form`).
 
-mod common;
+use crate::common;
 
 use common::*;
 use fringe::geometry::{Extent, Plane, Rect};

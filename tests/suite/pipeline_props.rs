@@ -17,8 +17,7 @@ use proptest::prelude::*;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
-#[path = "support/library.rs"]
-mod support_library;
+use crate::support::library as support_library;
 
 fn library() -> Vec<(String, Value)> {
     support_library::case_files()

@@ -2,7 +2,7 @@
 //! behaves exactly like a `Vec` that is copied on clone: random programs of pushes and clones
 //! over a pool of owned and shared trails are run against a pool of `Vec` models.
 
-mod common;
+use crate::common;
 
 use common::config;
 use fringe::trail::Trail;

@@ -15,7 +15,7 @@
 //! geometry below δφ ≈ 1e-12, so the test holds the code to ~1e-12; the paper's geometry
 //! (r ≈ 0.275 m = 5·10⁵ λ) is checked with the same formula, where the budget is ~2e-9.
 
-mod common;
+use crate::common;
 
 use common::EPS;
 use fringe::fidelity::Fidelity;

@@ -1,0 +1,29 @@
+//! fringe's integration tests, one binary (one link instead of one per file): each module is
+//! one former `tests/<name>.rs`. Shared strategies and independent reference helpers live in
+//! `common`, shared scenes and the library listing in `support`. Data files stay in `tests/data`
+//! and `tests/bad_cases`.
+
+mod common;
+mod support;
+
+mod accumulate;
+mod beats;
+mod case_library;
+mod case_parser_props;
+mod cli;
+mod colour;
+mod energy;
+mod fast_paths;
+mod figures;
+mod forward;
+mod fresnel_pinned;
+mod fresnel_props;
+mod interaction_props;
+mod material;
+mod path_solver;
+mod pipeline_props;
+mod render;
+mod stability;
+mod stability_report;
+mod trail;
+mod young_two_point;
