@@ -27,3 +27,5 @@ mod stability;
 mod stability_report;
 mod trail;
 mod young_two_point;
+mod truth;
+mod closed_form_precision;
