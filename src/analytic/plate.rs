@@ -2,9 +2,10 @@
 //! "Plate / film, multi-beam (Airy)"), its truncation, and the two-beam reflection of a point
 //! source (paper §4.2, Fig. 4 left) with the geometry solved here in one dimension.
 
-use super::path_phasor;
+use super::precise;
 use crate::fresnel::fresnel;
 use num_complex::Complex64;
+use twofloat::TwoFloat;
 
 /// s or p.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -190,29 +191,49 @@ impl TwoBeamPlate {
         }
     }
 
-    /// Beam 2: refracted in, reflected at the bottom face, refracted out. The angle solves
-    /// x = (h_s + h_o) tan θ + 2 d tan θt, sin θt = (n1/n2) sin θ, by bisection (monotone in θ).
+    /// Beam 2: refracted in, reflected at the bottom face, refracted out. Parametrised by the
+    /// entry point's lateral offset `a` (no trigonometry): first leg L1 = √(a² + h_s²),
+    /// sin θ = a/L1, sin θt = (n1/n2) sin θ, exit at X_e = a + 2 d tan θt, last leg
+    /// L3 = √((x − X_e)² + h_o²). `a` solves X_e + h_o tan θ = x by bisection; the optical path
+    /// n1 L1 + 2 n2 d/cos θt + n1 L3 of the broken ray through the computed entry point is
+    /// stationary there (Fermat), so the root's rounding enters only to second order, and it is
+    /// summed in double-double ([`super::precise`]), so the beam's path keeps ~1e-30 m.
     pub fn beam_bottom(&self, x_m: f64) -> Beam {
-        let h = self.h_src_m + self.h_obs_m;
-        let d = self.thickness_m;
+        self.beam_bottom_precise(x_m).0
+    }
+
+    /// [`TwoBeamPlate::beam_bottom`] with its optical path in double-double.
+    fn beam_bottom_precise(&self, x_m: f64) -> (Beam, TwoFloat) {
+        let (hs, ho, d) = (self.h_src_m, self.h_obs_m, self.thickness_m);
         let (n1, n2) = (self.n1, self.n2);
-        let lateral = |theta: f64| {
-            let st = n1 / n2 * theta.sin();
-            h * theta.tan() + 2.0 * d * st / (1.0 - st * st).sqrt() - x_m
+        // Landing offset of the ray entering at lateral a (f64, for the root only).
+        let lateral = |a: f64| {
+            let l1 = a.hypot(hs);
+            let st = n1 / n2 * a / l1;
+            let tan_t = st / (1.0 - st * st).sqrt();
+            a + 2.0 * d * tan_t + ho * a / hs - x_m
         };
-        let theta = super::bisect(0.0, std::f64::consts::FRAC_PI_2 * (1.0 - 1e-15), lateral);
-        let cos_i = theta.cos();
-        let st = n1 / n2 * theta.sin();
-        let cos_t = (1.0 - st * st).sqrt();
+        let a = super::bisect(0.0, x_m, lateral);
+        // The path through that entry point, in double-double.
+        let l1 = (TwoFloat::new_mul(a, a) + TwoFloat::new_mul(hs, hs)).sqrt();
+        let st = TwoFloat::from(a) * (n1 / n2) / l1; // n1/n2 is an input ratio, rounded once
+        let ct = (TwoFloat::from(1.0) - st * st).sqrt();
+        let x_e = TwoFloat::from(a) + st / ct * (2.0 * d);
+        let dx = TwoFloat::from(x_m) - x_e;
+        let l3 = (dx * dx + TwoFloat::new_mul(ho, ho)).sqrt();
+        let op = l1 * n1 + TwoFloat::from(2.0 * d) * n2 / ct + l3 * n1;
+        let cos_i = hs / f64::from(l1);
+        let cos_t = f64::from(ct);
         let f12 = fresnel(n1, n2, cos_i);
         let f23 = fresnel(n2, n1, cos_t);
         let f21 = fresnel(n2, n1, cos_t);
-        Beam {
-            theta,
-            optical_path_m: n1 * h / cos_i + 2.0 * n2 * d / cos_t,
+        let beam = Beam {
+            theta: a.atan2(hs),
+            optical_path_m: f64::from(op),
             amp_s: f12.t_s * f23.r_s * f21.t_s,
             amp_p: f12.t_p * f23.r_p * f21.t_p,
-        }
+        };
+        (beam, op)
     }
 
     /// Two-beam intensity for an unpolarized unit-intensity source whose channels are s and p
@@ -220,8 +241,12 @@ impl TwoBeamPlate {
     /// I = ½|a1s e^{iφ1} + a2s e^{iφ2}|² + ½(|a1p|² + |a2p|² + 2 Re(a1p a2p* e^{i(φ1−φ2)}) cos(θ1 − θ2)),
     /// where the p fields p_k = d_k × s of the two arriving rays make the angle θ1 − θ2.
     pub fn intensity_unpolarized(&self, x_m: f64, lambda_m: f64) -> f64 {
-        let (b1, b2) = (self.beam_top(x_m), self.beam_bottom(x_m));
-        let ph = path_phasor(b1.optical_path_m - b2.optical_path_m, lambda_m);
+        let (b1, (b2, op2)) = (self.beam_top(x_m), self.beam_bottom_precise(x_m));
+        let op1 = precise::distance(
+            glam::DVec3::new(x_m, self.h_src_m, 0.0),
+            glam::DVec3::new(0.0, -self.h_obs_m, 0.0),
+        ) * self.n1;
+        let ph = precise::path_phasor(op1 - op2, lambda_m);
         let i_s = (b1.amp_s * ph + b2.amp_s).norm_sqr();
         let i_p = b1.amp_p.norm_sqr()
             + b2.amp_p.norm_sqr()

@@ -1,6 +1,7 @@
 //! The case library: file format ([`spec`]), loading and validation ([`load`]), building tracer
 //! objects ([`build`]), closed-form references ([`reference`]) and running a case ([`run`]).
 pub mod build;
+pub mod detection;
 pub mod load;
 pub mod reference;
 pub mod run;

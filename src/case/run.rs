@@ -5,9 +5,9 @@ use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
 use super::reference::{self, MetricKind};
 use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
-use crate::observable::{Observable, Returns, check_match};
 use crate::accumulate::Accumulator;
 use crate::fidelity::{self, Fidelity, SceneNeeds};
+use crate::observable::{Observable, Returns, check_match};
 use crate::path::{EnumerationLimits, SolveOptions, Target};
 use crate::source::Emitter;
 use crate::trace::{self, Arrival, TraceSettings};
@@ -125,6 +125,8 @@ pub struct CaseResult {
     pub dark_points: usize,
     /// What the probe measures (intensity references compare this observable).
     pub observable: Observable,
+    /// The smallest errors the primary reference's gate catches (full runs only).
+    pub detection: Option<super::detection::DetectionFloors>,
 }
 
 struct PointOut {
@@ -137,7 +139,7 @@ struct PointOut {
     internal: usize,
 }
 
-fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
+pub(super) fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
     CaseError {
         file: case.file.clone(),
         json_path: path.into(),
@@ -156,7 +158,11 @@ fn gaussian(light: &Light) -> Option<(f64, f64)> {
 }
 
 /// The internal-reflection budget at a probe point.
-fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usize, CaseError> {
+pub(super) fn internal_reflections(
+    case: &Case,
+    built: &Built,
+    lambda_m: f64,
+) -> Result<usize, CaseError> {
     let spec = &case.spec;
     let Some(eps) = spec.trace.airy_tail_epsilon else {
         return Ok(spec.trace.max_internal_reflections);
@@ -272,7 +278,7 @@ pub fn trace_settings(
     ))
 }
 
-fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
+pub(super) fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
     TraceSettings {
         limits: EnumerationLimits {
             max_internal_reflections: internal,
@@ -294,7 +300,7 @@ fn probe_targets(target: &Target) -> Vec<DVec3> {
 }
 
 /// All arrivals at a target that the observer records.
-fn arrivals_at(
+pub(super) fn arrivals_at(
     built: &Built,
     optics: &crate::scene::SceneOptics,
     target: &Target,
@@ -340,8 +346,8 @@ fn special_value(
             // the input's (0 or π for linear light: a field at −45° starts at π).
             let src = built.scene.sources.first()?;
             let e_in = src.channels().first()?.field_direction(d_in);
-            let phase_in = Complex64::from(e_in.dot(d_in.cross(s))).arg()
-                - Complex64::from(e_in.dot(s)).arg();
+            let phase_in =
+                Complex64::from(e_in.dot(d_in.cross(s))).arg() - Complex64::from(e_in.dot(s)).arg();
             Some(reference::wrap(dot(p).arg() - dot(s).arg() - phase_in))
         }
         ReferenceModel::LloydVisibility {} => {
@@ -656,9 +662,11 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         internal_reflections: outs.iter().map(|o| o.internal).max().unwrap_or(0),
         dark_points,
         observable: measured,
+        detection: None,
     };
     if convergence_report {
         result.convergence = convergence(case, &points)?;
+        result.detection = super::detection::detection_floors(case, &result)?;
     }
     Ok(result)
 }
@@ -732,7 +740,10 @@ fn check_wiring(case: &Case, observer: &Observer) -> Result<(), CaseError> {
                 let path = if key == "mirrors" {
                     format!("$.references[{ri}].model.michelson.mirrors[{k}]")
                 } else {
-                    format!("$.references[{ri}].model.{}.{key}", reference::name(&r.model))
+                    format!(
+                        "$.references[{ri}].model.{}.{key}",
+                        reference::name(&r.model)
+                    )
                 };
                 match kind_of(name) {
                     Some(found) if found == wanted => {}
@@ -750,10 +761,8 @@ fn check_wiring(case: &Case, observer: &Observer) -> Result<(), CaseError> {
                 }
             }
         }
-        if let (
-            ReferenceModel::Airy { film, .. },
-            Observer::FarField { surface_normal, .. },
-        ) = (&r.model, observer)
+        if let (ReferenceModel::Airy { film, .. }, Observer::FarField { surface_normal, .. }) =
+            (&r.model, observer)
             && let Some(crate::case::spec::SurfaceSpec::Plate { normal, .. }) =
                 spec.scene.surfaces.iter().find(|s| s.name() == film)
         {

@@ -70,6 +70,47 @@ pub fn rows(r: &CaseResult) -> Vec<Row> {
             });
         }
     }
+    // What the primary reference's gate can see: an injected error of the floor's size on one
+    // path fails it; a floor beyond FLOOR_FACTOR × tolerance means the case cannot see errors.
+    if let (Some(d), Some(primary)) = (&r.detection, r.metrics.first()) {
+        use crate::case::detection::{FLOOR_FACTOR, Floor};
+        for (what, floor) in [("phase", d.phase_rad), ("amplitude", d.amplitude)] {
+            let limit = FLOOR_FACTOR * d.tolerance;
+            let unit = if what == "phase" { "rad" } else { "relative" };
+            let (value, tolerance, pass, note) = match floor {
+                Floor::Caught(f) => (
+                    f,
+                    Some(limit),
+                    Some(f <= limit),
+                    format!(
+                        "smallest {what} error on one path ({unit}) that fails {} at tolerance {:e}",
+                        primary.name, d.tolerance
+                    ),
+                ),
+                Floor::Blind => (
+                    f64::INFINITY,
+                    Some(limit),
+                    Some(false),
+                    format!(
+                        "a {what} error of 1 on one path does not fail {}",
+                        primary.name
+                    ),
+                ),
+                Floor::NotApplicable(why) => (f64::NAN, None, None, why.to_string()),
+            };
+            out.push(Row {
+                case: r.name.clone(),
+                fidelity: "vector".into(),
+                metric: format!("detect_{what}"),
+                max_abs_dev: value,
+                rms_dev: value,
+                tolerance,
+                pass,
+                seconds: 0.0,
+                note,
+            });
+        }
+    }
     // The auto choice must be exact for the primary reference.
     if let Some(primary) = r.metrics.first() {
         let (level, why) = &r.auto;
