@@ -191,20 +191,29 @@ fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usi
     Ok(internal)
 }
 
-/// Work units (see [`preflight`]) a case may use before it is refused: about two minutes of
-/// tracing on the 2-core machine of this project (calibrated with [`SECONDS_PER_WORK_UNIT`]).
-pub const MAX_PATH_EVENTS: f64 = 2.0e9;
+/// Work units (see [`preflight`]) a case may use before it is refused: about five minutes of
+/// tracing on the busy 2-core machine of this project, about one when it is idle (see
+/// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
+/// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
+/// 110 s measured) too; four (2.8e9) are refused.
+pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
-/// Measured seconds of tracing per work unit (2-core AMD EPYC VM of this project; stacked
-/// plates, point and plane-wave sources, the Airy plate walk: README "Limits" gives the runs
-/// and the command). Used only to state the estimate in time.
-pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-8;
+/// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
+/// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
+/// this project at a load of about 12 (six developers building); README "Limits" gives the
+/// runs and the command. Used only to state the estimate in time.
+pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+
+/// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
+/// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
+/// m = 2000 against stacked plates).
+const WALKED_NODE_UNITS: f64 = 20.0;
 
 /// The work of one probe point at one wavelength, counted on the sequence tree the tracer
 /// itself discovers there (`trace::plan`): every probe ray of discovery visits at most every
-/// node of the tree, and the solver then traces every candidate sequence event by event (or,
-/// for a plane wave observed in the far field, every node of the tree once: the walk of shared
-/// beginnings). Returns (work, measured): `measured` is false when the tree grew so fast with
+/// node of the tree (one unit each), and the solver then traces every candidate sequence event
+/// by event (one unit per event), or, for a plane wave observed in the far field, every node
+/// of the tree once (the walk of shared beginnings, [`WALKED_NODE_UNITS`] per node). Returns (work, measured): `measured` is false when the tree grew so fast with
 /// the allowed depth that the work was extrapolated (polynomially from the last doubling of the
 /// depth, which under-counts an exponential growth) instead of enumerated, because it already
 /// exceeds `cap`.
@@ -256,7 +265,12 @@ fn point_work(
                 .map(|n| n.depth as f64)
                 .sum::<f64>();
         }
-        let work = rays * nodes + if walked { nodes } else { events };
+        let work = rays * nodes
+            + if walked {
+                WALKED_NODE_UNITS * nodes
+            } else {
+                events
+            };
         if depth == full.max_events {
             return Ok((work, true));
         }
@@ -274,7 +288,7 @@ fn point_work(
 
 /// The tracing work of a case, checked before anything runs, in work units (one unit: a probe
 /// ray of sequence discovery visiting one node of the sequence tree, or the solver tracing one
-/// surface event). The tree is enumerated as the tracer enumerates it, at the probe point with
+/// surface event; about [`SECONDS_PER_WORK_UNIT`] each). The tree is enumerated as the tracer enumerates it, at the probe point with
 /// the largest internal-reflection budget (the Airy tail rule may raise it near grazing
 /// incidence), so the count follows the surfaces: reflections between separate surfaces in
 /// the ambient medium are not internal reflections, and stacked plates multiply the sequences

@@ -18,6 +18,7 @@ mod figures;
 mod forward;
 mod fresnel_pinned;
 mod fresnel_props;
+mod golden_reproducibility;
 mod input_classes;
 mod interaction_props;
 mod material;
