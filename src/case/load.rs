@@ -1072,7 +1072,8 @@ impl Validator {
     /// face). Non-parallel slabs always cross somewhere; parallel ones must be apart along the
     /// normal.
     fn intersecting_slabs(&mut self, s: &SceneSpec) {
-        let slabs: Vec<(usize, &SurfaceSpec, Vec<(glam::DVec3, glam::DVec3)>)> = s
+        type Faces = Vec<(glam::DVec3, glam::DVec3)>;
+        let slabs: Vec<(usize, &SurfaceSpec, Faces)> = s
             .surfaces
             .iter()
             .enumerate()

@@ -63,7 +63,9 @@ fn goldens_hold_to_their_conditioning_and_catch_physical_changes() {
             assert!(dev.is_ok(), "{name}: one ulp: {dev:?} (tolerance {tol:e})");
         }
         // 1 nm is physics (phase changes of 1e-5 to 1e-2 rad): caught.
-        let shifted = case_with(name, &|v| move_probe(v, &|x| if x == 0.0 { x } else { x + 1e-9 }));
+        let shifted = case_with(name, &|v| {
+            move_probe(v, &|x| if x == 0.0 { x } else { x + 1e-9 })
+        });
         let (dev, tol) = golden_deviation(&shifted);
         assert!(
             matches!(dev, Err(report::GoldenError::Mismatch(_))),
