@@ -102,9 +102,12 @@ pub struct CheckOutcome {
     /// Failed cases by name; `stability` when a stability check failed.
     pub failed_cases: Vec<String>,
     pub stability: Sweep,
+    /// `--bless` was asked for but the run failed: no golden file was written.
+    pub bless_refused: bool,
 }
 
-/// The name under which the stability sweep appears in the verdict table.
+/// The name under which the stability sweep appears in the verdict table (reserved: no case
+/// may have it, `load::limits::RESERVED_CASE_NAMES`).
 pub const STABILITY: &str = "stability";
 
 /// Verdict-table rows of the stability sweep: one per group of judged checks, with deviations
@@ -211,8 +214,25 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         }
     }
     // Every case's work is checked before any runs: a refused case costs nothing.
-    for c in &cases {
-        run::preflight(c)?;
+    let work: Vec<f64> = cases.iter().map(run::preflight).collect::<Result<_, _>>()?;
+    // So are the folders the run writes: a bad `--out` is found before the tracing, not after.
+    let unwritable = |what: &str, dir: &Path, e: std::io::Error| {
+        InputError(format!(
+            "{}: {what} is not a writable folder: {e}",
+            dir.display()
+        ))
+    };
+    report::probe_writable(&opts.out).map_err(|e| unwritable("--out", &opts.out, e))?;
+    if opts.bless {
+        report::probe_writable(&opts.golden_dir)
+            .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
+    }
+    // A bless interrupted by a kill is finished (or undone) before goldens are read.
+    if opts.golden_dir.join(report::BLESS_STAGE).exists() {
+        let _lock = report::lock_dir(&opts.golden_dir)
+            .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
+        report::recover_bless(&opts.golden_dir)
+            .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
     }
     let results: Vec<CaseResult> = cases.iter().map(run::run).collect::<Result<_, _>>()?;
 
@@ -251,19 +271,22 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         }
         let golden_path = opts.golden_dir.join(format!("{}.csv", r.name));
         let text = report::golden_csv(r);
+        // The case's golden tolerance, or its values' conditioning when larger (golden files
+        // are reproducible across CPUs to their conditioning, not bit for bit).
+        let golden_tolerance = report::golden_tolerance(case, r);
         let golden_row = |pass: bool, dev: f64, note: String| Row {
             case: r.name.clone(),
             fidelity: "all".into(),
             metric: "golden".into(),
             max_abs_dev: dev,
             rms_dev: dev,
-            tolerance: Some(case.spec.trace.golden_tolerance),
+            tolerance: Some(golden_tolerance),
             pass: Some(pass),
             seconds: 0.0,
             note,
         };
         if opts.bless {
-            goldens.push((golden_path, text));
+            goldens.push((format!("{}.csv", r.name), text));
         } else {
             match std::fs::read_to_string(&golden_path) {
                 Err(_) => case_rows.push(golden_row(
@@ -275,7 +298,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
                         r.name
                     ),
                 )),
-                Ok(g) => match report::compare_golden(r, &g, case.spec.trace.golden_tolerance) {
+                Ok(g) => match report::compare_golden(r, &g, golden_tolerance) {
                     Ok(dev) => {
                         case_rows.push(golden_row(true, dev, golden_path.display().to_string()))
                     }
@@ -301,11 +324,14 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     rows.extend(stability_table_rows(&sweep));
     let stability_png = report::plot::stability_paths_png(&sweep.paths).map_err(InputError)?;
 
-    // Everything ran: now write, each file atomically.
+    // Everything ran: now write, each file atomically, one run at a time per `--out`.
     let io =
         |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
+    let out_lock = report::lock_dir(&opts.out).map_err(|e| io(&opts.out, e))?;
+    report::remove_stale_temp_files(&opts.out).map_err(|e| io(&opts.out, e))?;
     for (case, r) in cases.iter().zip(&results) {
         let dir = opts.out.join(&r.name);
+        report::remove_stale_temp_files(&dir).map_err(|e| io(&dir, e))?;
         let p = dir.join("profile.csv");
         report::write_atomic(&p, report::profile_csv(r).as_bytes()).map_err(|e| io(&p, e))?;
         if !r.convergence.is_empty() {
@@ -318,7 +344,8 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     }
     let summary: Vec<report::CaseSummary> = results
         .iter()
-        .map(|r| report::CaseSummary {
+        .zip(&work)
+        .map(|(r, &work_units)| report::CaseSummary {
             case: &r.name,
             description: &r.description,
             formula: &r.formula,
@@ -327,15 +354,13 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             internal_reflections: r.internal_reflections,
             dark_points: r.dark_points,
             trace_seconds: r.trace_seconds,
+            work_units,
             rows: rows.iter().filter(|x| x.case == r.name).cloned().collect(),
         })
         .collect();
     let p = opts.out.join("summary.json");
     let json = serde_json::to_string_pretty(&summary).map_err(|e| InputError(e.to_string()))?;
     report::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
-    for (p, text) in &goldens {
-        report::write_atomic(p, text.as_bytes()).map_err(|e| io(p, e))?;
-    }
     let p = opts.out.join("stability.csv");
     report::write_atomic(&p, stability::csv(&sweep.rows).as_bytes()).map_err(|e| io(&p, e))?;
     let p = opts.out.join("stability_paths.png");
@@ -351,6 +376,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         }
     }
     report::html::write_index(&opts.out).map_err(InputError)?;
+    drop(out_lock);
 
     let mut failed_cases: Vec<String> = rows
         .iter()
@@ -358,10 +384,18 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         .map(|r| r.case.clone())
         .collect();
     failed_cases.dedup();
+    // Golden files are baselines of a correct tracer: only a passing run is blessed, and its
+    // files are written as one set.
+    let bless_refused = opts.bless && !failed_cases.is_empty();
+    if opts.bless && !bless_refused {
+        let _lock = report::lock_dir(&opts.golden_dir).map_err(|e| io(&opts.golden_dir, e))?;
+        report::bless_set(&opts.golden_dir, &goldens).map_err(|e| io(&opts.golden_dir, e))?;
+    }
     Ok(CheckOutcome {
         rows,
         results,
         failed_cases,
         stability: sweep,
+        bless_refused,
     })
 }

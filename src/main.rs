@@ -5,20 +5,54 @@ use fringe::check::{self, CheckOptions, Format};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// `print!` that ignores a closed stdout (e.g. `fringe check | head`): the verdict and the
-/// exit code must not turn into a broken-pipe panic.
+/// The first failed write to stdout other than a closed pipe (a full disk, an I/O error): the
+/// command then exits non-zero instead of leaving a truncated output behind an exit 0.
+static STDOUT_FAILURE: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
+
+/// Write to stdout; a closed stdout (e.g. `fringe check | head`) stays quiet, any other failure
+/// is remembered for the exit code (see [`finish_stdout`]).
+fn emit(args: std::fmt::Arguments) {
+    use std::io::Write as _;
+    if let Err(e) = std::io::stdout().lock().write_fmt(args) {
+        note_stdout_error(e);
+    }
+}
+
+fn note_stdout_error(e: std::io::Error) {
+    if e.kind() != std::io::ErrorKind::BrokenPipe
+        && let Ok(mut f) = STDOUT_FAILURE.lock()
+    {
+        f.get_or_insert_with(|| e.to_string());
+    }
+}
+
+/// Flush stdout and turn a failed write into exit code 2 (with one `error:` line), unless the
+/// command already failed.
+fn finish_stdout(code: ExitCode) -> ExitCode {
+    use std::io::Write as _;
+    if let Err(e) = std::io::stdout().lock().flush() {
+        note_stdout_error(e);
+    }
+    match STDOUT_FAILURE.lock().ok().and_then(|f| f.clone()) {
+        Some(e) if code == ExitCode::SUCCESS => {
+            eprintln!("error: stdout: cannot write: {e}");
+            ExitCode::from(2)
+        }
+        _ => code,
+    }
+}
+
+/// `print!` to stdout through [`emit`].
 macro_rules! out {
     ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = write!(std::io::stdout().lock(), $($arg)*);
+        emit(format_args!($($arg)*));
     }};
 }
 
-/// `println!` that ignores a closed stdout (see `out!`).
+/// `println!` to stdout through [`emit`].
 macro_rules! outln {
     ($($arg:tt)*) => {{
-        use std::io::Write as _;
-        let _ = writeln!(std::io::stdout().lock(), $($arg)*);
+        emit(format_args!("{}\n", format_args!($($arg)*)));
     }};
 }
 
@@ -148,6 +182,11 @@ enum Command {
 }
 
 fn main() -> ExitCode {
+    let code = run_cli();
+    finish_stdout(code)
+}
+
+fn run_cli() -> ExitCode {
     let cli = match Cli::try_parse() {
         Ok(c) => c,
         Err(e) => {
@@ -346,6 +385,12 @@ fn main() -> ExitCode {
                     ExitCode::from(2)
                 }
                 Ok(outcome) => {
+                    if outcome.bless_refused {
+                        eprintln!(
+                            "not blessed: golden files are written only for a passing run; {} unchanged",
+                            opts.golden_dir.display()
+                        );
+                    }
                     match opts.format {
                         Format::Table => out!("{}", fringe::report::table(&outcome.rows)),
                         Format::Json => outln!(
@@ -404,16 +449,45 @@ fn render_command(
         .iter()
         .map(|f| fringe::render::parse_shading(f))
         .collect::<Result<Vec<_>, _>>()?;
+    // The options get the case file's caps (src/case/load.rs `limits`).
+    use fringe::case::load::limits::{MAX_SPECTRAL_SAMPLES, WAVELENGTH_NM};
     let white = match (samples, wavelengths_nm) {
-        (Some(k), _) => Some((
-            fringe::figures::visible_grid(k).map_err(|e| format!("--samples {k}: {e}"))?,
-            illuminant,
-        )),
-        (None, Some(list)) => Some((
-            WavelengthGrid::from_list(list.iter().map(|nm| nm * 1e-9).collect())
-                .map_err(|e| format!("--wavelengths-nm: {e}"))?,
-            illuminant,
-        )),
+        (Some(k), _) => {
+            if !(2..=MAX_SPECTRAL_SAMPLES).contains(&k) {
+                return Err(format!(
+                    "--samples {k}: 2 to {MAX_SPECTRAL_SAMPLES} spectral samples"
+                ));
+            }
+            Some((
+                fringe::figures::visible_grid(k).map_err(|e| format!("--samples {k}: {e}"))?,
+                illuminant,
+            ))
+        }
+        (None, Some(list)) => {
+            let (lo, hi) = WAVELENGTH_NM;
+            if list.is_empty() || list.len() > MAX_SPECTRAL_SAMPLES {
+                return Err(format!(
+                    "--wavelengths-nm: 1 to {MAX_SPECTRAL_SAMPLES} wavelengths, got {}",
+                    list.len()
+                ));
+            }
+            if let Some(bad) = list
+                .iter()
+                .find(|nm| !(nm.is_finite() && **nm >= lo && **nm <= hi))
+            {
+                return Err(format!(
+                    "--wavelengths-nm: a wavelength (nm) must be in [{lo}, {hi}], got {bad}"
+                ));
+            }
+            if list.windows(2).any(|w| w[1] <= w[0]) {
+                return Err("--wavelengths-nm: wavelengths must be strictly increasing".to_string());
+            }
+            Some((
+                WavelengthGrid::from_list(list.iter().map(|nm| nm * 1e-9).collect())
+                    .map_err(|e| format!("--wavelengths-nm: {e}"))?,
+                illuminant,
+            ))
+        }
         (None, None) => None,
     };
     let cmd = fringe::render::Command {

@@ -28,6 +28,19 @@ pub mod limits {
     pub const MAX_TIR_COUNT: usize = 100;
     /// Largest case file (bytes).
     pub const MAX_FILE_BYTES: u64 = 16 << 20;
+    /// Thinnest plate or wedge (µm): 1 pm. Films down to 1 pm trace correctly; below it a
+    /// thickness is nonsense (1e-300 µm), not physics.
+    pub const MIN_THICKNESS_UM: f64 = 1.0e-6;
+    /// Case names the tool's own outputs use (folders and rows next to the cases' in `--out`):
+    /// a case may not be called one of these.
+    pub const RESERVED_CASE_NAMES: [&str; 6] = [
+        "stability",
+        "figures",
+        "render",
+        "tradeoff",
+        "forward",
+        "summary",
+    ];
     /// Directions (normals, axes, polarization references) must have a length in this range.
     pub const DIRECTION_LENGTH: (f64, f64) = (1.0e-12, 1.0e12);
 }
@@ -107,8 +120,14 @@ pub fn parse(path: &Path, text: &str) -> Result<Case, CaseError> {
         )));
     }
     let de = &mut serde_json::Deserializer::from_str(text);
-    let spec: CaseFile =
-        serde_path_to_error::deserialize(&mut *de).map_err(|e| err(serde_error(text, e)))?;
+    let spec: CaseFile = serde_path_to_error::deserialize(&mut *de).map_err(|e| {
+        // A key written twice explains a failure the format names less clearly (a kind given
+        // twice reads as an object with two kinds).
+        err(repeated_key(text).unwrap_or_else(|| serde_error(text, e)))
+    })?;
+    if let Some(e) = repeated_key(text) {
+        return Err(err(e));
+    }
     de.end().map_err(|e| {
         err((
             "$".into(),
@@ -119,6 +138,15 @@ pub fn parse(path: &Path, text: &str) -> Result<Case, CaseError> {
             ),
         ))
     })?;
+    // serde reads a struct from a positional array too (`"trace": [3]` would become
+    // max_internal_reflections = 3): a case file writes every object with its keys.
+    if let (Ok(original), Ok(canonical)) = (
+        serde_json::from_str::<serde_json::Value>(text),
+        serde_json::to_value(&spec),
+    ) && let Some(e) = positional_object(&original, &canonical, "$")
+    {
+        return Err(err(e));
+    }
     let mut v = Validator { errors: Vec::new() };
     v.case(&spec);
     match v.errors.into_iter().next() {
@@ -127,6 +155,93 @@ pub fn parse(path: &Path, text: &str) -> Result<Case, CaseError> {
             file: path.to_path_buf(),
             spec,
         }),
+    }
+}
+
+/// The first key written twice in one object anywhere in `text` (JSON path of the object,
+/// message), `None` when there is none or the text is not JSON: JSON leaves repeated keys
+/// undefined and serde keeps the last, so a case file names every key once.
+fn repeated_key(text: &str) -> Option<(String, String)> {
+    use serde::de::{Deserialize, Deserializer, Error, MapAccess, SeqAccess, Visitor};
+    struct Unique;
+    impl<'de> Deserialize<'de> for Unique {
+        fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Self, D::Error> {
+            d.deserialize_any(Unique)
+        }
+    }
+    impl<'de> Visitor<'de> for Unique {
+        type Value = Unique;
+        fn expecting(&self, f: &mut fmt::Formatter) -> fmt::Result {
+            f.write_str("any JSON value")
+        }
+        fn visit_bool<E>(self, _: bool) -> Result<Unique, E> {
+            Ok(Unique)
+        }
+        fn visit_i64<E>(self, _: i64) -> Result<Unique, E> {
+            Ok(Unique)
+        }
+        fn visit_u64<E>(self, _: u64) -> Result<Unique, E> {
+            Ok(Unique)
+        }
+        fn visit_f64<E>(self, _: f64) -> Result<Unique, E> {
+            Ok(Unique)
+        }
+        fn visit_str<E>(self, _: &str) -> Result<Unique, E> {
+            Ok(Unique)
+        }
+        fn visit_unit<E>(self) -> Result<Unique, E> {
+            Ok(Unique)
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut a: A) -> Result<Unique, A::Error> {
+            while a.next_element::<Unique>()?.is_some() {}
+            Ok(Unique)
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut a: A) -> Result<Unique, A::Error> {
+            let mut seen = std::collections::BTreeSet::new();
+            while let Some(k) = a.next_key::<String>()? {
+                if !seen.insert(k.clone()) {
+                    return Err(A::Error::custom(format_args!("duplicate field `{k}`")));
+                }
+                a.next_value::<Unique>()?;
+            }
+            Ok(Unique)
+        }
+    }
+    let de = &mut serde_json::Deserializer::from_str(text);
+    match serde_path_to_error::deserialize::<_, Unique>(&mut *de) {
+        Err(e) if e.inner().to_string().starts_with("duplicate field `") => {
+            Some(serde_error(text, e))
+        }
+        _ => None,
+    }
+}
+
+/// The first place (JSON path, message) where the file has an array and the case format an
+/// object: `canonical` is the parsed case written back (every object with its keys), so the
+/// two trees have the same shape wherever the file wrote objects as objects.
+fn positional_object(
+    original: &serde_json::Value,
+    canonical: &serde_json::Value,
+    path: &str,
+) -> Option<(String, String)> {
+    use serde_json::Value;
+    match (original, canonical) {
+        (Value::Array(_), Value::Object(keys)) => Some((
+            path.to_string(),
+            format!(
+                "expected an object with named keys, got an array: objects are never written as positional arrays; keys here: {:?}",
+                keys.keys().collect::<Vec<_>>()
+            ),
+        )),
+        (Value::Object(o), Value::Object(c)) => o
+            .iter()
+            .find_map(|(k, v)| positional_object(v, c.get(k)?, &format!("{path}.{k}"))),
+        (Value::Array(o), Value::Array(c)) => o
+            .iter()
+            .zip(c)
+            .enumerate()
+            .find_map(|(i, (v, w))| positional_object(v, w, &format!("{path}[{i}]"))),
+        _ => None,
     }
 }
 
@@ -339,6 +454,58 @@ fn name_ok(n: &str) -> bool {
             .all(|c| c.is_ascii_alphanumeric() || c == '_' || c == '-')
 }
 
+/// The nearest a probe point may be to a point or line source (m): about a wavelength; closer,
+/// ray optics does not hold and on the source the wave is singular.
+pub const MIN_PROBE_DISTANCE_M: f64 = 1.0e-6;
+
+/// The planes of a surface's faces: (a point, the unit normal); one for thin surfaces, two for
+/// plates and wedges (the wedge's bottom tilted by its angle about the hinge). A bounded
+/// surface's plane extends beyond the surface: callers say which they need.
+fn surface_planes(surf: &SurfaceSpec) -> Vec<(glam::DVec3, glam::DVec3)> {
+    use glam::DVec3;
+    let n = |v: &Vec3| unit(v).unwrap_or(DVec3::Z);
+    match surf {
+        SurfaceSpec::Interface {
+            point_m, normal, ..
+        }
+        | SurfaceSpec::Mirror {
+            point_m, normal, ..
+        }
+        | SurfaceSpec::Splitter {
+            point_m, normal, ..
+        }
+        | SurfaceSpec::Shield {
+            point_m, normal, ..
+        }
+        | SurfaceSpec::OpaqueScreen {
+            point_m, normal, ..
+        } => vec![(DVec3::from_array(*point_m), n(normal))],
+        SurfaceSpec::Plate {
+            top_point_m,
+            normal,
+            thickness_um,
+            ..
+        } => {
+            let (t, n) = (DVec3::from_array(*top_point_m), n(normal));
+            vec![(t, n), (t - thickness_um * 1e-6 * n, n)]
+        }
+        SurfaceSpec::Wedge {
+            top_point_m,
+            normal,
+            thickness_um,
+            angle_deg,
+            hinge_axis,
+            ..
+        } => {
+            let (t, n) = (DVec3::from_array(*top_point_m), n(normal));
+            let h = DVec3::from_array(*hinge_axis);
+            let axis = (h - h.dot(n) * n).normalize_or_zero();
+            let tilted = glam::DQuat::from_axis_angle(axis, angle_deg.to_radians()) * n;
+            vec![(t, n), (t - thickness_um * 1e-6 * n, tilted)]
+        }
+    }
+}
+
 /// The serde tag of a surface (`plate`, `mirror`, …), for JSON paths.
 fn surface_kind(s: &SurfaceSpec) -> &'static str {
     match s {
@@ -477,6 +644,15 @@ impl Validator {
                 .all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_')
         {
             self.fail("$.name", format!("a case name is 1–64 characters from [a-z0-9_] (it names output files), got {:?}", c.name));
+        } else if limits::RESERVED_CASE_NAMES.contains(&c.name.as_str()) {
+            self.fail(
+                "$.name",
+                format!(
+                    "the case name {:?} is reserved for fringe's own outputs (reserved: {:?}); choose another",
+                    c.name,
+                    limits::RESERVED_CASE_NAMES
+                ),
+            );
         }
         self.light(&c.light);
         self.scene(&c.scene);
@@ -726,6 +902,218 @@ impl Validator {
         for (i, src) in s.sources.iter().enumerate() {
             self.placement(&format!("$.scene.sources[{i}]"), src, s);
         }
+        if self.errors.is_empty() {
+            self.coincident_sources(s);
+        }
+        if self.errors.is_empty() {
+            self.probe_geometry(c);
+        }
+        if self.errors.is_empty() {
+            self.intersecting_slabs(s);
+        }
+    }
+
+    /// Two point sources at one place, or two line sources along one line (coincident Young
+    /// slits): the "two beams" are one, and the closed forms that need their separation
+    /// (Young's d) are undefined.
+    fn coincident_sources(&mut self, s: &SceneSpec) {
+        use glam::DVec3;
+        let anchor = |e: &EmitterSpec| match e {
+            EmitterSpec::Point { position_m } => Some((DVec3::from_array(*position_m), None)),
+            EmitterSpec::Line { point_m, axis } => Some((DVec3::from_array(*point_m), unit(axis))),
+            EmitterSpec::PlaneWave { .. } => None,
+        };
+        for (j, b) in s.sources.iter().enumerate() {
+            for a in &s.sources[..j] {
+                let (Some((pa, la)), Some((pb, lb))) = (anchor(&a.emitter), anchor(&b.emitter))
+                else {
+                    continue;
+                };
+                let same = match (la, lb) {
+                    (None, None) => (pa - pb).length() < MIN_PROBE_DISTANCE_M,
+                    (Some(u), Some(w)) => {
+                        u.cross(w).length() < 1e-9
+                            && (pb - pa - (pb - pa).dot(u) * u).length() < MIN_PROBE_DISTANCE_M
+                    }
+                    _ => false,
+                };
+                if same {
+                    self.fail(
+                        &format!("$.scene.sources[{j}].emitter"),
+                        format!(
+                            "sources {:?} and {:?} coincide (closer than {MIN_PROBE_DISTANCE_M:e} m, about a wavelength): they are one source, not two beams; separate them or merge them into one source of the summed intensity",
+                            a.name, b.name
+                        ),
+                    );
+                    return;
+                }
+            }
+        }
+    }
+
+    /// Every probe point must be a place the tracer can mean: not within about a wavelength of
+    /// a point or line source (ray optics needs the observer far from its sources; on the
+    /// source the spherical or cylindrical wave is singular), and not on a surface (a detector
+    /// in an interface has no side). A probe line or grid through a source is refused even if
+    /// no sample lands on it.
+    fn probe_geometry(&mut self, c: &CaseFile) {
+        use glam::DVec3;
+        let (key, segment): (&str, Option<(DVec3, DVec3)>) = match &c.probe {
+            Probe::Line { from_m, to_m, .. } => (
+                "$.probe.line",
+                Some((DVec3::from_array(*from_m), DVec3::from_array(*to_m))),
+            ),
+            Probe::Grid { .. } => ("$.probe.grid", None),
+            Probe::Sweep { .. } => ("$.probe.sweep.observe.point.position_m", None),
+            Probe::Single { .. } => ("$.probe.single.observe.point.position_m", None),
+        };
+        let points: Vec<DVec3> = super::build::probe_points(&c.probe)
+            .iter()
+            .filter_map(|p| match &p.observer {
+                Observer::Point { position_m, .. } => Some(DVec3::from_array(*position_m)),
+                _ => None,
+            })
+            .collect();
+        if points.is_empty() {
+            return;
+        }
+        // Distance from a source (point, or line through a point) to the probe.
+        let segment_distance = |a: DVec3, b: DVec3, x: DVec3| {
+            let d = b - a;
+            let t = if d.length_squared() > 0.0 {
+                ((x - a).dot(d) / d.length_squared()).clamp(0.0, 1.0)
+            } else {
+                0.0
+            };
+            (a + t * d - x).length()
+        };
+        for src in &c.scene.sources {
+            let (dist, what) = match &src.emitter {
+                EmitterSpec::Point { position_m } => {
+                    let x = DVec3::from_array(*position_m);
+                    let near = match segment {
+                        Some((a, b)) => segment_distance(a, b, x),
+                        None => points
+                            .iter()
+                            .map(|p| (*p - x).length())
+                            .fold(f64::INFINITY, f64::min),
+                    };
+                    (near, "point source")
+                }
+                EmitterSpec::Line { point_m, axis } => {
+                    let (x, u) = (DVec3::from_array(*point_m), unit(axis).unwrap_or(DVec3::Z));
+                    let off = |p: DVec3| (p - x - (p - x).dot(u) * u).length();
+                    let near = match segment {
+                        // The segment's distance to the line: the smallest over the segment
+                        // of the perpendicular offset, a convex function of the parameter.
+                        Some((a, b)) => {
+                            let (mut lo, mut hi) = (0.0f64, 1.0f64);
+                            for _ in 0..200 {
+                                let (m1, m2) = (lo + (hi - lo) / 3.0, hi - (hi - lo) / 3.0);
+                                if off(a + m1 * (b - a)) <= off(a + m2 * (b - a)) {
+                                    hi = m2;
+                                } else {
+                                    lo = m1;
+                                }
+                            }
+                            off(a + 0.5 * (lo + hi) * (b - a))
+                        }
+                        None => points.iter().map(|p| off(*p)).fold(f64::INFINITY, f64::min),
+                    };
+                    (near, "line source")
+                }
+                EmitterSpec::PlaneWave { .. } => continue,
+            };
+            if dist < MIN_PROBE_DISTANCE_M {
+                self.fail(
+                    key,
+                    format!(
+                        "the probe passes within {} m of the {what} {:?}: ray optics needs probe points farther than {MIN_PROBE_DISTANCE_M:e} m (about a wavelength) from a source, and on it the wave is singular",
+                        num(dist),
+                        src.name
+                    ),
+                );
+                return;
+            }
+        }
+        // Unbounded faces only: beside a bounded surface's edge its plane is free space.
+        let bounded = |x: &SurfaceSpec| match x {
+            SurfaceSpec::Interface { rect, .. }
+            | SurfaceSpec::Mirror { rect, .. }
+            | SurfaceSpec::Splitter { rect, .. }
+            | SurfaceSpec::OpaqueScreen { rect, .. } => rect.is_some(),
+            SurfaceSpec::Shield { .. } => true,
+            SurfaceSpec::Plate { .. } | SurfaceSpec::Wedge { .. } => false,
+        };
+        for surf in c.scene.surfaces.iter().filter(|x| !bounded(x)) {
+            for (pt, n) in surface_planes(surf) {
+                let scale = pt.length().max(1.0);
+                let on = |p: &DVec3| (*p - pt).dot(n).abs() <= 1e-12 * scale;
+                let lies_in = match segment {
+                    Some((a, b)) => on(&a) && on(&b),
+                    None => false,
+                };
+                if lies_in || points.iter().any(on) {
+                    self.fail(
+                        key,
+                        format!(
+                            "{} surface {:?}: a detector in an interface has no side; move the probe off the surface",
+                            if lies_in { "the probe line lies in a face of" } else { "a probe point lies on" },
+                            surf.name()
+                        ),
+                    );
+                    return;
+                }
+            }
+        }
+    }
+
+    /// Plates and wedges are unbounded slabs: two of them must not share any volume (nor a
+    /// face). Non-parallel slabs always cross somewhere; parallel ones must be apart along the
+    /// normal.
+    fn intersecting_slabs(&mut self, s: &SceneSpec) {
+        type Faces = Vec<(glam::DVec3, glam::DVec3)>;
+        let slabs: Vec<(usize, &SurfaceSpec, Faces)> = s
+            .surfaces
+            .iter()
+            .enumerate()
+            .filter(|(_, x)| matches!(x, SurfaceSpec::Plate { .. } | SurfaceSpec::Wedge { .. }))
+            .map(|(i, x)| (i, x, surface_planes(x)))
+            .collect();
+        for (k, (j, b, fb)) in slabs.iter().enumerate() {
+            for (_, a, fa) in &slabs[..k] {
+                let parallel = fa
+                    .iter()
+                    .chain(fb.iter())
+                    .all(|(_, n)| n.cross(fa[0].1).length() < 1e-9);
+                let apart = parallel && {
+                    // Intervals along the common normal.
+                    let n = fa[0].1;
+                    let span = |f: &[(glam::DVec3, glam::DVec3)]| {
+                        let (x, y) = (f[0].0.dot(n), f[1].0.dot(n));
+                        (x.min(y), x.max(y))
+                    };
+                    let ((a0, a1), (b0, b1)) = (span(fa), span(fb));
+                    a1 < b0 || b1 < a0
+                };
+                if !apart {
+                    self.fail(
+                        &format!("$.scene.surfaces[{j}].{}", surface_kind(b)),
+                        format!(
+                            "{:?} and {:?} intersect or touch: {}; plates and wedges are unbounded slabs and must not share volume or a face",
+                            a.name(),
+                            b.name(),
+                            if parallel {
+                                "their thicknesses overlap along the normal"
+                            } else {
+                                "their faces are not parallel, so the unbounded slabs cross"
+                            }
+                        ),
+                    );
+                    return;
+                }
+            }
+        }
     }
 
     fn light(&mut self, l: &Light) {
@@ -872,12 +1260,19 @@ impl Validator {
         media: [&String; 3],
         defined: &BTreeMap<String, MediumSpec>,
     ) {
-        self.positive(
-            &format!("{q}.thickness_um"),
-            thickness_um,
-            1e6,
-            "a thickness (µm)",
-        );
+        let path = format!("{q}.thickness_um");
+        if self.finite(&path, thickness_um)
+            && !(limits::MIN_THICKNESS_UM..=1e6).contains(&thickness_um)
+        {
+            self.fail(
+                &path,
+                format!(
+                    "a thickness (µm) must be in [{}, 1e6] (1 pm to 1 m), got {}",
+                    num(limits::MIN_THICKNESS_UM),
+                    num(thickness_um)
+                ),
+            );
+        }
         for (k, m) in ["medium", "above", "below"].into_iter().zip(media) {
             self.medium_ref(&format!("{q}.{k}"), m, defined);
         }
@@ -1348,8 +1743,16 @@ impl Validator {
                         self.wavelength("$.probe.sweep.to", *to);
                     }
                     SweepParameter::ThicknessNm { surface } => {
-                        self.positive("$.probe.sweep.from", *from, 1e9, "a thickness (nm)");
-                        self.positive("$.probe.sweep.to", *to, 1e9, "a thickness (nm)");
+                        let min_nm = limits::MIN_THICKNESS_UM * 1e3;
+                        for (key, x) in [("from", *from), ("to", *to)] {
+                            self.range(
+                                &format!("$.probe.sweep.{key}"),
+                                x,
+                                min_nm,
+                                1e9,
+                                "a thickness (nm, 1 pm to 1 m)",
+                            );
+                        }
                         if !s.surfaces.iter().any(|x| {
                             x.name() == surface
                                 && matches!(

@@ -211,39 +211,161 @@ pub(super) fn internal_reflections(
     Ok(internal)
 }
 
-/// Path events a case may trace before it is refused (see [`preflight`]).
-pub const MAX_PATH_EVENTS: f64 = 1.0e9;
+/// Work units (see [`preflight`]) a case may use before it is refused: about five minutes of
+/// tracing on the busy 2-core machine of this project, about one when it is idle (see
+/// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
+/// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
+/// 110 s measured) too; four (2.8e9) are refused.
+pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
-/// The tracing work of a case, checked before anything runs: Σ over probe points of (spectral
-/// samples) × (path events per point), m the internal-reflection budget at the point (the Airy
-/// tail rule may raise it near grazing incidence), and tracing time is proportional to the
-/// events. Plane waves observed in the far field are walked as a tree of shared beginnings
-/// (`trace`'s far-field walk: each internal reflection adds a reflected and a transmitted
-/// branch), 2(m + 2) events; any other point traces every sequence from its source, and
-/// (m + 2)² bounds the events of all sequences of a plane-parallel plate with up to m internal
-/// reflections (about m/2 orders of up to m + 2 events each). A case over [`MAX_PATH_EVENTS`] is
-/// refused with an error naming the key that drives it; so is a tail bound that needs more
-/// internal reflections than the cap.
+/// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
+/// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
+/// this project at a load of about 12 (six developers building); README "Limits" gives the
+/// runs and the command. Used only to state the estimate in time.
+pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+
+/// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
+/// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
+/// m = 2000 against stacked plates).
+const WALKED_NODE_UNITS: f64 = 20.0;
+
+/// The work of one probe point at one wavelength, counted on the sequence tree the tracer
+/// itself discovers there (`trace::plan`): every probe ray of discovery visits at most every
+/// node of the tree (one unit each), and the solver then traces every candidate sequence event
+/// by event (one unit per event), or, for a plane wave observed in the far field, every node
+/// of the tree once (the walk of shared beginnings, [`WALKED_NODE_UNITS`] per node). Returns (work, measured): `measured` is false when the tree grew so fast with
+/// the allowed depth that the work was extrapolated (polynomially from the last doubling of the
+/// depth, which under-counts an exponential growth) instead of enumerated, because it already
+/// exceeds `cap`.
+fn point_work(
+    case: &Case,
+    pt: &ProbePoint,
+    internal: usize,
+    cap: f64,
+) -> Result<(f64, bool), CaseError> {
+    let spec = &case.spec;
+    let built =
+        build::build_scene(&spec.scene, &pt.overrides).map_err(|e| case_err(case, "$.scene", e))?;
+    let spectrum = build::spectrum(&spec.light, &pt.overrides);
+    let lambda = spectrum[spectrum.len() / 2].0;
+    let optics = built
+        .scene
+        .optics(lambda)
+        .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+    let target =
+        build::target(&pt.observer, &built, lambda).map_err(|e| case_err(case, "$.probe", e))?;
+    let walked = !matches!(pt.observer, Observer::Point { .. })
+        && built
+            .scene
+            .sources
+            .iter()
+            .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
+    let probe = probe_targets(&target);
+    // trace::plan's probe rays per source: the probe points, each surface's plane point and the
+    // specular points of the probe on each plane.
+    let rays = (probe.len()
+        + built.scene.surfaces.len() * (1 + probe.len() * built.scene.sources.len()))
+        as f64;
+    let full = settings(case, &built, internal).limits;
+    let mut depth = full.max_events.min(8);
+    let mut previous: Option<f64> = None;
+    loop {
+        let limits = EnumerationLimits {
+            max_events: depth,
+            ..full
+        };
+        let plan = trace::plan(&built.scene, &optics, &probe, &limits);
+        let (mut nodes, mut events) = (0.0, 0.0);
+        for tree in &plan.sequences {
+            nodes += tree.nodes().len() as f64;
+            events += tree
+                .nodes()
+                .iter()
+                .filter(|n| n.candidate)
+                .map(|n| n.depth as f64)
+                .sum::<f64>();
+        }
+        let work = rays * nodes
+            + if walked {
+                WALKED_NODE_UNITS * nodes
+            } else {
+                events
+            };
+        if depth == full.max_events {
+            return Ok((work, true));
+        }
+        if let Some(w0) = previous {
+            let p = (work / w0).log2().max(0.0);
+            let predicted = work * (full.max_events as f64 / depth as f64).powf(p);
+            if predicted > cap {
+                return Ok((predicted, false));
+            }
+        }
+        previous = Some(work);
+        depth = (2 * depth).min(full.max_events);
+    }
+}
+
+/// The tracing work of a case, checked before anything runs, in work units (one unit: a probe
+/// ray of sequence discovery visiting one node of the sequence tree, or the solver tracing one
+/// surface event; about [`SECONDS_PER_WORK_UNIT`] each). The tree is enumerated as the tracer enumerates it, at the probe point with
+/// the largest internal-reflection budget (the Airy tail rule may raise it near grazing
+/// incidence), so the count follows the surfaces: reflections between separate surfaces in
+/// the ambient medium are not internal reflections, and stacked plates multiply the sequences
+/// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
+/// Every other point costs the same, scaled by its own budget m as the tracer scales
+/// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
+/// spectral samples; the bounce-convergence report of monochrome Airy cases adds twelve budgets
+/// of at most 24 points. A case over [`MAX_PATH_EVENTS`] is refused with the estimate (units
+/// and seconds) and the key that drives it; so is a tail bound that needs more internal
+/// reflections than the cap.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;
-    let mut events = 0.0;
-    let mut worst = 0;
-    for pt in build::probe_points(&spec.probe) {
+    let points = build::probe_points(&spec.probe);
+    let mut budgets = Vec::with_capacity(points.len());
+    for pt in &points {
         let built = build::build_scene(&spec.scene, &pt.overrides)
             .map_err(|e| case_err(case, "$.scene", e))?;
         let spectrum = build::spectrum(&spec.light, &pt.overrides);
         let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
-        worst = worst.max(internal);
         let walked = !matches!(pt.observer, Observer::Point { .. })
             && built
                 .scene
                 .sources
                 .iter()
                 .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
-        let m = (internal + 2) as f64;
-        events += spectrum.len() as f64 * if walked { 2.0 * m } else { m * m };
+        budgets.push((internal, walked, spectrum.len() as f64));
     }
-    if events > MAX_PATH_EVENTS {
+    // The representative point: the largest budget, the centre among equals.
+    let centre = points.len() / 2;
+    let worst = budgets.iter().map(|b| b.0).max().unwrap_or(0);
+    let rep = if budgets[centre].0 == worst {
+        centre
+    } else {
+        budgets.iter().position(|b| b.0 == worst).unwrap_or(centre)
+    };
+    // Each point relative to the representative one.
+    let scale = |&(m, walked, samples): &(usize, bool, f64)| {
+        let r = (m as f64 + 2.0) / (worst as f64 + 2.0);
+        samples * if walked { r } else { r * r }
+    };
+    let mut weight: f64 = budgets.iter().map(scale).sum();
+    let convergence_report = matches!(spec.light, Light::Monochrome { .. })
+        && spec.references.iter().any(|r| {
+            matches!(
+                r.model,
+                ReferenceModel::Airy {
+                    index_override: None,
+                    ..
+                }
+            )
+        });
+    if convergence_report {
+        weight += 12.0 * points.len().min(24) as f64;
+    }
+    let (per_point, measured) = point_work(case, &points[rep], worst, MAX_PATH_EVENTS / weight)?;
+    let work = per_point * weight;
+    if work > MAX_PATH_EVENTS {
         let key = if spec.trace.airy_tail_epsilon.is_some() {
             "$.trace.airy_tail_epsilon"
         } else {
@@ -253,15 +375,21 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
             case,
             key,
             format!(
-                "this case would trace about {events:.2e} path events (probe points × spectral \
-                 samples × path events per point: (internal reflections + 2)², or twice \
-                 (internal reflections + 2) for plane waves in the far field; up to {worst} \
-                 internal reflections), more than the work cap of {MAX_PATH_EVENTS:.0e}: use \
-                 fewer probe points or spectral samples, or fewer internal reflections"
+                "this case would take {} {work:.2e} work units (≈ {:.0} s on the 2-core \
+                 machine of this project), more than the work cap of {MAX_PATH_EVENTS:.0e}: \
+                 {} surface(s) with up to {worst} internal reflections give {per_point:.2e} \
+                 units per probe point and wavelength (sequence discovery and solving; \
+                 reflections between separate surfaces in the ambient medium multiply the \
+                 sequences), times {} probe point(s) and their spectral samples: use fewer \
+                 surfaces, internal reflections, probe points or spectral samples",
+                if measured { "about" } else { "at least" },
+                work * SECONDS_PER_WORK_UNIT,
+                spec.scene.surfaces.len(),
+                points.len()
             ),
         ));
     }
-    Ok(events)
+    Ok(work)
 }
 
 /// The tracer settings of a case at a probe point: its internal-reflection budget (or the Airy
@@ -820,8 +948,24 @@ fn convergence(case: &Case, points: &[ProbePoint]) -> Result<Vec<ConvergenceRow>
     let points: Vec<ProbePoint> = points.iter().step_by(stride).cloned().collect();
     let points = &points[..];
     let mut rows = Vec::new();
+    // Never more internal reflections than the case's own budget (the preflight counted it).
+    let budget = points
+        .iter()
+        .map(|pt| {
+            let built = build::build_scene(&spec.scene, &pt.overrides)
+                .map_err(|e| case_err(case, "$.scene", e))?;
+            let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
+            internal_reflections(case, &built, lambda)
+        })
+        .collect::<Result<Vec<_>, _>>()?
+        .into_iter()
+        .max()
+        .unwrap_or(0);
     for orders in [1usize, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64] {
         let internal = 2 * orders - 1;
+        if internal > budget.max(1) {
+            break;
+        }
         let res: Vec<(f64, f64)> = points
             .par_iter()
             .map(|pt| -> Result<(f64, f64), CaseError> {

@@ -247,6 +247,46 @@ pub struct SourceSpec {
     pub coherence_length_m: Option<f64>,
 }
 
+/// A JSON object read as a map whose keys must be distinct: serde's `BTreeMap` keeps the last of
+/// two equal keys; a case file names each medium (or tolerance level) once. The error reads
+/// like serde's own for a struct field given twice (`duplicate field `name``), so the loader
+/// words both alike.
+fn unique_keys<'de, D, K, V>(d: D) -> Result<BTreeMap<K, V>, D::Error>
+where
+    D: serde::Deserializer<'de>,
+    K: Deserialize<'de> + Ord + std::fmt::Display,
+    V: Deserialize<'de>,
+{
+    struct Unique<K, V>(std::marker::PhantomData<(K, V)>);
+    impl<'de, K, V> serde::de::Visitor<'de> for Unique<K, V>
+    where
+        K: Deserialize<'de> + Ord + std::fmt::Display,
+        V: Deserialize<'de>,
+    {
+        type Value = BTreeMap<K, V>;
+        fn expecting(&self, f: &mut std::fmt::Formatter) -> std::fmt::Result {
+            f.write_str("a map")
+        }
+        fn visit_map<A: serde::de::MapAccess<'de>>(
+            self,
+            mut a: A,
+        ) -> Result<Self::Value, A::Error> {
+            let mut out = BTreeMap::new();
+            while let Some(k) = a.next_key::<K>()? {
+                if out.contains_key(&k) {
+                    return Err(serde::de::Error::custom(format_args!(
+                        "duplicate field `{k}`"
+                    )));
+                }
+                let v = a.next_value()?;
+                out.insert(k, v);
+            }
+            Ok(out)
+        }
+    }
+    d.deserialize_map(Unique(std::marker::PhantomData))
+}
+
 fn one() -> f64 {
     1.0
 }
@@ -257,6 +297,8 @@ fn one() -> f64 {
 pub struct SceneSpec {
     /// Name of the medium around the sources.
     pub ambient: String,
+    /// Media by name; a name defined twice is an error (not "the last one wins").
+    #[serde(deserialize_with = "unique_keys")]
     pub media: BTreeMap<String, MediumSpec>,
     pub surfaces: Vec<SurfaceSpec>,
     pub sources: Vec<SourceSpec>,
@@ -366,6 +408,7 @@ pub struct ReferenceSpec {
     /// Name of the metric in tables and files (default: the model's name); unique per case.
     #[serde(default)]
     pub label: Option<String>,
+    #[serde(deserialize_with = "unique_keys")]
     pub tolerances: BTreeMap<Fidelity, f64>,
     /// Why a tolerance looser than 1e-9 is physically forced (required when one is).
     #[serde(default)]

@@ -1,5 +1,18 @@
 //! Outputs of a check: the verdict table, CSV profiles, the JSON summary and golden files.
-//! Every file is written atomically (temporary file in the same folder, then rename).
+//!
+//! What a kill at any moment leaves behind:
+//! - every file is written atomically ([`write_atomic`]: a temporary `.fringe-tmp-*` file in
+//!   the same folder, synced, then renamed over the old one), so each file is complete-old or
+//!   complete-new; a leftover temporary file is removed by the next run that writes there
+//!   ([`remove_stale_temp_files`]);
+//! - the golden files of one `--bless` are one set ([`bless_set`]): staged in
+//!   `<golden>/.fringe-bless/`, made durable, committed by a `COMMIT` list, then renamed into
+//!   place. A kill before the commit leaves the old set (the next run deletes the stage); a kill
+//!   after it is rolled forward by the next run ([`recover_bless`]), so every run reads one
+//!   whole set;
+//! - writers of one folder (`--out`, the golden folder) hold an exclusive lock on the folder
+//!   ([`lock_dir`]) while they write: two concurrent runs on one `--out` write one after the
+//!   other, each leaving a whole set of reports.
 
 pub mod html;
 pub mod image;
@@ -12,6 +25,13 @@ use serde::Serialize;
 use std::fmt::Write as _;
 use std::path::Path;
 
+/// Prefix of the temporary files of [`write_atomic`].
+pub const TEMP_PREFIX: &str = ".fringe-tmp-";
+
+/// Folder (inside the golden folder) where a bless stages its set, and its commit mark.
+pub const BLESS_STAGE: &str = ".fringe-bless";
+const BLESS_COMMIT: &str = "COMMIT";
+
 /// Write `bytes` to `path` atomically, creating the parent folder.
 pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
     let dir = path
@@ -19,7 +39,9 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
         .filter(|p| !p.as_os_str().is_empty())
         .unwrap_or(Path::new("."));
     std::fs::create_dir_all(dir)?;
-    let mut tmp = tempfile::NamedTempFile::new_in(dir)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)?;
     std::io::Write::write_all(&mut tmp, bytes)?;
     tmp.as_file().sync_all()?;
     // Reports are for reading by anyone (tempfile creates 0600 files).
@@ -30,6 +52,98 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
             .set_permissions(std::fs::Permissions::from_mode(0o644))?;
     }
     tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+/// Make `dir` (created if absent) and show that a file can be written in it, before any work
+/// whose results would go there. Leaves at most the (empty) folder behind.
+pub fn probe_writable(dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)?;
+    std::io::Write::write_all(&mut tmp, b"fringe")?;
+    tmp.as_file().sync_all()?;
+    Ok(())
+}
+
+/// An exclusive lock on the folder `dir` (created if absent), held until the returned file is
+/// dropped; waits while another fringe process holds it. The folder itself is locked (`flock`),
+/// so no lock file is left behind.
+pub fn lock_dir(dir: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::create_dir_all(dir)?;
+    let f = std::fs::File::open(dir)?;
+    f.lock()?;
+    Ok(f)
+}
+
+/// Remove leftover temporary files of interrupted atomic writes in `dir` (not recursive):
+/// `.fringe-tmp-*`, and `.tmp*` of versions before the prefix. Call it holding [`lock_dir`].
+/// Returns how many were removed.
+pub fn remove_stale_temp_files(dir: &Path) -> std::io::Result<usize> {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return Ok(0);
+    };
+    let mut removed = 0;
+    for e in rd {
+        let e = e?;
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        if (name.starts_with(TEMP_PREFIX) || name.starts_with(".tmp")) && e.file_type()?.is_file() {
+            std::fs::remove_file(e.path())?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
+/// Sync a folder's entries (renames in it) to disk.
+fn sync_dir(dir: &Path) -> std::io::Result<()> {
+    std::fs::File::open(dir)?.sync_all()
+}
+
+/// Finish or undo an interrupted [`bless_set`] in `golden_dir`: with a commit mark, rename the
+/// staged files into place (roll forward); without one, delete the stage (roll back). Also
+/// removes stale temporary files. Call it holding [`lock_dir`] on `golden_dir`. Returns whether
+/// there was anything to recover.
+pub fn recover_bless(golden_dir: &Path) -> std::io::Result<bool> {
+    let stage = golden_dir.join(BLESS_STAGE);
+    let stale = remove_stale_temp_files(golden_dir)? > 0;
+    if !stage.exists() {
+        return Ok(stale);
+    }
+    if let Ok(list) = std::fs::read_to_string(stage.join(BLESS_COMMIT)) {
+        for name in list.lines().filter(|l| !l.is_empty()) {
+            let staged = stage.join(name);
+            if staged.exists() {
+                std::fs::rename(&staged, golden_dir.join(name))?;
+            }
+        }
+        sync_dir(golden_dir)?;
+    }
+    std::fs::remove_dir_all(&stage)?;
+    Ok(true)
+}
+
+/// Write the golden files `files` (file name, text) into `golden_dir` as one set: stage every
+/// file (synced), commit the list, then rename each into place (see the module docs for what a
+/// kill leaves). Call it holding [`lock_dir`] on `golden_dir`.
+pub fn bless_set(golden_dir: &Path, files: &[(String, String)]) -> std::io::Result<()> {
+    recover_bless(golden_dir)?;
+    let stage = golden_dir.join(BLESS_STAGE);
+    std::fs::create_dir_all(&stage)?;
+    for (name, text) in files {
+        write_atomic(&stage.join(name), text.as_bytes())?;
+    }
+    let list: String = files.iter().map(|(n, _)| format!("{n}\n")).collect();
+    // The commit point: from here on the new set is what the golden folder holds.
+    write_atomic(&stage.join(BLESS_COMMIT), list.as_bytes())?;
+    sync_dir(&stage)?;
+    for (name, _) in files {
+        std::fs::rename(stage.join(name), golden_dir.join(name))?;
+    }
+    sync_dir(golden_dir)?;
+    std::fs::remove_dir_all(&stage)?;
     Ok(())
 }
 
@@ -267,6 +381,98 @@ pub fn compare_golden(r: &CaseResult, golden: &str, tolerance: f64) -> Result<f6
     Ok(worst)
 }
 
+/// Roundings a traced optical path may carry, in units of the f64 unit roundoff, per unit of
+/// its length: every segment length (differences, a dot product, a square root) and the sum of
+/// segments round a few times; 8 covers them with room.
+const PATH_ROUNDINGS: f64 = 8.0;
+
+/// The tolerance of a case's golden comparison: the case's `golden_tolerance`, or the
+/// conditioning bound of its traced values when that is larger. Golden files are not bit for
+/// bit reproducible across CPUs (libm's sin, cos, exp and pow differ in the last bit between
+/// implementations, e.g. glibc's FMA variants): a traced value is reproducible only to its
+/// conditioning. An interference intensity I = |Σ E_k e^{iφ_k}|² with phases φ_k = 2π s_k/λ
+/// (P10) moves by |δI| ≤ 2 (Σ|E_k|)² max|δφ_k| when its phases move by δφ_k, and a path s
+/// rounded with relative error ε·u moves its phase by 2π n s ε u/λ: relative to the profile's
+/// largest value (≈ (Σ|E_k|)² at a bright fringe) the deviation is at most 2 Φ ε u with
+/// Φ = 2π n_max S/λ_min, S = (m + 2 + 2 × surfaces) × D the longest path (segments × the
+/// diameter D of the scene's points: sources, probe points, surface points), m the internal
+/// reflections traced. Michelson (S ≈ 0.6 m at 600 nm): Φ ≈ 6e6 rad, bound ≈ 1.2e-8.
+pub fn golden_tolerance(case: &crate::case::load::Case, r: &CaseResult) -> f64 {
+    use crate::case::spec::{EmitterSpec, Observer, SurfaceSpec};
+    let spec = &case.spec;
+    let mut points: Vec<glam::DVec3> = Vec::new();
+    for s in &spec.scene.sources {
+        points.push(glam::DVec3::from_array(match &s.emitter {
+            EmitterSpec::Point { position_m } => *position_m,
+            EmitterSpec::Line { point_m, .. } => *point_m,
+            EmitterSpec::PlaneWave {
+                reference_point_m, ..
+            } => *reference_point_m,
+        }));
+    }
+    for s in &spec.scene.surfaces {
+        points.push(glam::DVec3::from_array(match s {
+            SurfaceSpec::Interface { point_m, .. }
+            | SurfaceSpec::Mirror { point_m, .. }
+            | SurfaceSpec::Splitter { point_m, .. }
+            | SurfaceSpec::Shield { point_m, .. }
+            | SurfaceSpec::OpaqueScreen { point_m, .. } => *point_m,
+            SurfaceSpec::Plate { top_point_m, .. } | SurfaceSpec::Wedge { top_point_m, .. } => {
+                *top_point_m
+            }
+        }));
+    }
+    for p in crate::case::build::probe_points(&spec.probe) {
+        match &p.observer {
+            Observer::Point { position_m, .. } => points.push(glam::DVec3::from_array(*position_m)),
+            Observer::Direction {
+                reference_point_m, ..
+            } => points.push(glam::DVec3::from_array(*reference_point_m)),
+            Observer::FarField { .. } => {}
+        }
+    }
+    let mut diameter = 0.0f64;
+    for (i, a) in points.iter().enumerate() {
+        for b in &points[i + 1..] {
+            diameter = diameter.max((*a - *b).length());
+        }
+    }
+    // Far-field observers and thin scenes: at least the thickest slab.
+    for s in &spec.scene.surfaces {
+        if let SurfaceSpec::Plate { thickness_um, .. } | SurfaceSpec::Wedge { thickness_um, .. } = s
+        {
+            diameter = diameter.max(thickness_um * 1e-6);
+        }
+    }
+    let spectrum = crate::case::build::spectrum(&spec.light, &Default::default());
+    let mut lambda_min = spectrum.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
+    if let crate::case::spec::Probe::Sweep {
+        parameter: crate::case::spec::SweepParameter::WavelengthNm {},
+        from,
+        to,
+        ..
+    } = &spec.probe
+    {
+        lambda_min = lambda_min.min(from.min(*to) * 1e-9);
+    }
+    let n_max = spec
+        .scene
+        .media
+        .iter()
+        .filter_map(|(name, m)| {
+            let m = crate::case::build::medium(name, m);
+            spectrum
+                .iter()
+                .filter_map(|s| m.index(s.0).ok())
+                .reduce(f64::max)
+        })
+        .fold(1.0f64, f64::max);
+    let segments = (r.internal_reflections + 2 + spec.scene.surfaces.len() * 2) as f64;
+    let phase = 2.0 * std::f64::consts::PI * n_max * segments * diameter / lambda_min;
+    let bound = 2.0 * phase * PATH_ROUNDINGS * f64::EPSILON / 2.0;
+    spec.trace.golden_tolerance.max(bound)
+}
+
 /// The summary of one case for `summary.json`.
 #[derive(Serialize)]
 pub struct CaseSummary<'a> {
@@ -278,6 +484,9 @@ pub struct CaseSummary<'a> {
     pub internal_reflections: usize,
     pub dark_points: usize,
     pub trace_seconds: f64,
+    /// The work the preflight estimated (units of `case::run::preflight`), to compare with
+    /// `trace_seconds`.
+    pub work_units: f64,
     pub rows: Vec<Row>,
 }
 

@@ -163,7 +163,7 @@ fn every_library_case_passes() {
             Err(e) => failures.push(format!("{name}: {}: {e}", golden.display())),
             Ok(text) => {
                 if let Err(e) =
-                    report::compare_golden(&result, &text, case.spec.trace.golden_tolerance)
+                    report::compare_golden(&result, &text, report::golden_tolerance(&case, &result))
                 {
                     failures.push(format!("{name}: golden {}: {e:?}", golden.display()));
                 }
