@@ -465,21 +465,21 @@ fn grade_command(
     cases_dir: PathBuf,
     format: FormatArg,
 ) -> ExitCode {
-    use fringe::grade::grade;
+    use fringe::grade::grading;
     let Some(level) = fringe::fidelity::Fidelity::parse(level) else {
         eprintln!(
             "error: --level {level:?}: allowed: incoherent, scalar, scalar_jump, paper_rules, vector"
         );
         return ExitCode::from(2);
     };
-    let opts = grade::GradeOptions {
+    let opts = grading::GradeOptions {
         case,
         values,
         cases_dir,
         out,
         level,
     };
-    match grade::grade(&opts) {
+    match grading::grade(&opts) {
         Err(e) => {
             eprintln!("error: {}", e.0);
             ExitCode::from(2)
@@ -492,7 +492,7 @@ fn grade_command(
                     serde_json::to_string_pretty(&outcome.rows).unwrap_or_default()
                 ),
             }
-            for l in grade::closest_lines(&outcome) {
+            for l in grading::closest_lines(&outcome) {
                 eprintln!("{l}");
             }
             if outcome.failed {

@@ -4,7 +4,7 @@
 //! reproduce it: the case file, the probe points and wavelengths, the observable of every
 //! quantity with its definition and unit, the conventions, the expected values (closed form and
 //! exact traced at every fidelity level) and the tolerances. `fringe grade CASE --values FILE`
-//! ([`grade`]) reads that tracer's values ([`values`]) and judges them like `fringe check`
+//! ([`grading`]) reads that tracer's values ([`values`]) and judges them like `fringe check`
 //! judges the traced values: the same deviation metric, tolerances, verdict rows and exit codes,
 //! plus which fidelity rung they match best.
 //!
@@ -14,7 +14,7 @@
 //! reference is a quantity of its own.
 
 pub mod export;
-pub mod grade;
+pub mod grading;
 pub mod values;
 
 use crate::case::reference::MetricKind;

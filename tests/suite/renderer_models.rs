@@ -159,15 +159,14 @@ fn fitted_sensitivities_approximate_the_cie_integral() {
         0.0, 100.0, 200.0, 350.0, 500.0, 750.0, 1000.0, 1040.0, 2000.0, 4000.0,
     ] {
         let s = belcour_barla::sensitivity(opd_nm * 1e-9, 0.0);
-        for c in 0..3 {
+        for (c, actual) in s.into_iter().enumerate() {
             let expected = integral(opd_nm * 1e-9, c);
-            let err = (s[c] - expected).abs();
+            let err = (actual - expected).abs();
             if opd_nm <= 1040.0 {
                 worst = worst.max(err);
             }
             println!(
-                "OPD {opd_nm} nm channel {c}: actual {:.4}, expected {expected:.4}, err {err:.4}",
-                s[c]
+                "OPD {opd_nm} nm channel {c}: actual {actual:.4}, expected {expected:.4}, err {err:.4}"
             );
         }
     }
