@@ -161,7 +161,7 @@ pub struct GridRow {
     pub comparison: String,
     pub theta_deg: f64,
     pub thickness_um: f64,
-    /// max over λ of |R_test − R_reference| (dimensionless).
+    /// max over λ of |R_test − R_reference| (dimensionless); NaN for colour-only comparisons.
     pub max_abs_dr: f64,
     /// The wavelength of that maximum (nm).
     pub at_nm: f64,
@@ -339,14 +339,18 @@ pub fn run(stacks: &[Stack]) -> Vec<GridRow> {
                     p.xyz_exact,
                     f64::NAN,
                 ),
-                row(
-                    Comparison::FittedSensitivities,
-                    &p.bb_series,
-                    &p.bb_series,
-                    p.xyz_bb_fit,
-                    p.xyz_bb_series,
-                    f64::NAN,
-                ),
+                // Colours only: both sides have the same spectrum, so no ΔR (NaN).
+                GridRow {
+                    max_abs_dr: f64::NAN,
+                    ..row(
+                        Comparison::FittedSensitivities,
+                        &p.bb_series,
+                        &p.bb_series,
+                        p.xyz_bb_fit,
+                        p.xyz_bb_series,
+                        f64::NAN,
+                    )
+                },
             ]
         })
         .collect()
@@ -388,10 +392,12 @@ pub fn summarize(rows: &[GridRow]) -> Vec<Summary> {
             if r.is_empty() {
                 continue;
             }
+            // NaN |ΔR| (colour-only comparisons) is skipped; all NaN reports NaN.
             let wdr = r
                 .iter()
+                .filter(|x| !x.max_abs_dr.is_nan())
                 .max_by(|a, b| a.max_abs_dr.total_cmp(&b.max_abs_dr))
-                .unwrap();
+                .unwrap_or(&r[0]);
             let wde = r.iter().max_by(|a, b| a.de00.total_cmp(&b.de00)).unwrap();
             let ok = |x: &&GridRow| x.de00 < 1.0;
             let mut ds: Vec<f64> = r.iter().map(|x| x.thickness_um).collect();
@@ -502,15 +508,19 @@ pub fn summary_markdown(rows: &[Summary]) -> String {
         } else {
             format!("{:.1}°", r.worst_retardance_deg)
         };
+        let dr = if r.worst_dr.is_nan() {
+            "- (colour only)".to_string()
+        } else {
+            format!(
+                "{:.2e} ({}°, {:.3} µm, {} nm)",
+                r.worst_dr, r.worst_dr_at.0, r.worst_dr_at.1, r.worst_dr_at.2
+            )
+        };
         let _ = writeln!(
             s,
-            "| {} | {} | {:.2e} ({}°, {:.3} µm, {} nm) | {:.2} ({}°, {:.3} µm) | {:.0}% | {} | {} | {} |",
+            "| {} | {} | {dr} | {:.2} ({}°, {:.3} µm) | {:.0}% | {} | {} | {} |",
             r.stack,
             r.comparison,
-            r.worst_dr,
-            r.worst_dr_at.0,
-            r.worst_dr_at.1,
-            r.worst_dr_at.2,
             r.worst_de,
             r.worst_de_at.0,
             r.worst_de_at.1,
@@ -539,5 +549,7 @@ pub fn write(out: &std::path::Path) -> Result<String, String> {
         crate::report::write_atomic(&p, text.as_bytes())
             .map_err(|e| format!("{}: cannot write: {e}", p.display()))?;
     }
+    // The report page shows the table (src/report/renderers.rs).
+    crate::report::html::write_index(out)?;
     Ok(md)
 }
