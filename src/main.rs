@@ -179,6 +179,41 @@ enum Command {
         #[arg(long, value_delimiter = ',', default_values_t = [4usize, 8, 16, 32])]
         pixels: Vec<usize>,
     },
+    /// The thin-layer models renderers ship (pbrt/Mitsuba thin dielectric, Belcour-Barla, ...)
+    /// against exact Airy over angle x thickness x wavelength; writes DIR/models/ and prints the
+    /// error table.
+    Models {
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+    },
+    /// Conformance packs: per case, what another tracer needs to reproduce it (scene, probes,
+    /// wavelengths, observables, conventions, expected values, tolerances) in DIR/<case>/.
+    Export {
+        /// Case names or files (none: the whole library).
+        cases: Vec<String>,
+        #[arg(long)]
+        out: PathBuf,
+        #[arg(long, default_value = "cases")]
+        cases_dir: PathBuf,
+    },
+    /// Grade another tracer's values at a case's probes: verdict rows as `check`, the closest
+    /// fidelity rung; exit 0 pass, 1 fail, 2 bad input.
+    Grade {
+        /// A case name (cases/) or a path to a case file.
+        case: String,
+        /// The value file (quantity,coordinate,value; see values_exact.csv of `fringe export`).
+        #[arg(long)]
+        values: PathBuf,
+        /// The rung whose tolerance judges the values.
+        #[arg(long, default_value = "vector")]
+        level: String,
+        #[arg(long, default_value = "reports")]
+        out: PathBuf,
+        #[arg(long, default_value = "cases")]
+        cases_dir: PathBuf,
+        #[arg(long, value_enum, default_value = "table")]
+        format: FormatArg,
+    },
 }
 
 fn main() -> ExitCode {
@@ -196,6 +231,40 @@ fn run_cli() -> ExitCode {
         }
     };
     match cli.command {
+        Command::Export {
+            cases,
+            out,
+            cases_dir,
+        } => match fringe::grade::export::export(&cases, &cases_dir, &out) {
+            Ok(lines) => {
+                for l in lines {
+                    outln!("{l}");
+                }
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {}", e.0);
+                ExitCode::from(2)
+            }
+        },
+        Command::Grade {
+            case,
+            values,
+            level,
+            out,
+            cases_dir,
+            format,
+        } => grade_command(case, values, &level, out, cases_dir, format),
+        Command::Models { out } => match fringe::renderer_models::study::write(&out) {
+            Ok(table) => {
+                out!("{table}");
+                ExitCode::SUCCESS
+            }
+            Err(e) => {
+                eprintln!("error: {e}");
+                ExitCode::from(2)
+            }
+        },
         Command::Tradeoff {
             cases,
             out,
@@ -427,6 +496,66 @@ fn run_cli() -> ExitCode {
                         ExitCode::from(1)
                     }
                 }
+            }
+        }
+    }
+}
+
+/// `fringe grade`: judge a value file, print the verdict rows and the closest rungs.
+fn grade_command(
+    case: String,
+    values: PathBuf,
+    level: &str,
+    out: PathBuf,
+    cases_dir: PathBuf,
+    format: FormatArg,
+) -> ExitCode {
+    use fringe::grade::grading;
+    let Some(level) = fringe::fidelity::Fidelity::parse(level) else {
+        eprintln!(
+            "error: --level {level:?}: allowed: incoherent, scalar, scalar_jump, paper_rules, vector"
+        );
+        return ExitCode::from(2);
+    };
+    let opts = grading::GradeOptions {
+        case,
+        values,
+        cases_dir,
+        out,
+        level,
+    };
+    match grading::grade(&opts) {
+        Err(e) => {
+            eprintln!("error: {}", e.0);
+            ExitCode::from(2)
+        }
+        Ok(outcome) => {
+            match format {
+                FormatArg::Table => out!("{}", fringe::report::table(&outcome.rows)),
+                FormatArg::Json => outln!(
+                    "{}",
+                    serde_json::to_string_pretty(&outcome.rows).unwrap_or_default()
+                ),
+            }
+            for l in grading::closest_lines(&outcome) {
+                eprintln!("{l}");
+            }
+            if outcome.failed {
+                for r in outcome.rows.iter().filter(|r| r.pass == Some(false)) {
+                    eprintln!(
+                        "  {} {} {}: max|dev| {:e} > {:e}; {}",
+                        r.case,
+                        r.fidelity,
+                        r.metric,
+                        r.max_abs_dev,
+                        r.tolerance.unwrap_or(f64::NAN),
+                        r.note
+                    );
+                }
+                eprintln!("FAILED: {}", outcome.case);
+                ExitCode::from(1)
+            } else {
+                ExitCode::SUCCESS
             }
         }
     }

@@ -368,6 +368,8 @@ pub fn index_html(out: &Path) -> Result<String, String> {
             serde_json::from_str(&t).map_err(|e| format!("figures/figures.json: {e}"))?;
         figures_section(&mut h, out, &m);
     }
+    super::renderers::models_section(&mut h, out);
+    super::renderers::grade_section(&mut h, out);
     h.push_str("</body></html>\n");
     Ok(h)
 }

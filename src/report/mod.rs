@@ -17,6 +17,7 @@
 pub mod html;
 pub mod image;
 pub mod plot;
+pub mod renderers;
 pub mod tradeoff_plot;
 
 use crate::case::run::CaseResult;
