@@ -506,18 +506,6 @@ fn surface_planes(surf: &SurfaceSpec) -> Vec<(glam::DVec3, glam::DVec3)> {
     }
 }
 
-/// The serde tag of a surface (`plate`, `mirror`, …), for JSON paths.
-fn surface_kind(s: &SurfaceSpec) -> &'static str {
-    match s {
-        SurfaceSpec::Interface { .. } => "interface",
-        SurfaceSpec::Plate { .. } => "plate",
-        SurfaceSpec::Wedge { .. } => "wedge",
-        SurfaceSpec::Mirror { .. } => "mirror",
-        SurfaceSpec::Splitter { .. } => "splitter",
-        SurfaceSpec::Shield { .. } => "shield",
-        SurfaceSpec::OpaqueScreen { .. } => "opaque_screen",
-    }
-}
 
 impl Validator {
     fn fail(&mut self, path: &str, msg: impl Into<String>) {
@@ -850,7 +838,7 @@ impl Validator {
         // Every medium the scene uses must have a real index in range at every wavelength.
         let mut used: Vec<(&str, String)> = vec![(s.ambient.as_str(), "$.scene.ambient".into())];
         for (i, surf) in s.surfaces.iter().enumerate() {
-            let q = format!("$.scene.surfaces[{i}].{}", surface_kind(surf));
+            let q = format!("$.scene.surfaces[{i}].{}", surf.kind());
             match surf {
                 SurfaceSpec::Interface { front, back, .. } => {
                     used.push((front, format!("{q}.front")));
@@ -1098,7 +1086,7 @@ impl Validator {
                 };
                 if !apart {
                     self.fail(
-                        &format!("$.scene.surfaces[{j}].{}", surface_kind(b)),
+                        &format!("$.scene.surfaces[{j}].{}", b.kind()),
                         format!(
                             "{:?} and {:?} intersect or touch: {}; plates and wedges are unbounded slabs and must not share volume or a face",
                             a.name(),
@@ -1209,7 +1197,7 @@ impl Validator {
         let mut names = std::collections::BTreeSet::new();
         for (i, surf) in s.surfaces.iter().enumerate() {
             let p = format!("$.scene.surfaces[{i}]");
-            let np = format!("{p}.{}.name", surface_kind(surf));
+            let np = format!("{p}.{}.name", surf.kind());
             if !names.insert(surf.name().to_string()) {
                 self.fail(
                     &np,
