@@ -25,5 +25,6 @@ mod pipeline_props;
 mod render;
 mod stability;
 mod stability_report;
+mod tradeoff;
 mod trail;
 mod young_two_point;
