@@ -103,7 +103,7 @@ pub struct CaseResult {
     pub formula: String,
     pub levels: Vec<Fidelity>,
     pub metrics: Vec<MetricResult>,
-    pub auto: (Fidelity, String),
+    pub auto: fidelity::AutoChoice,
     pub trace_seconds: f64,
     pub level_seconds: BTreeMap<Fidelity, f64>,
     pub convergence: Vec<ConvergenceRow>,
