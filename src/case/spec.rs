@@ -405,7 +405,7 @@ pub enum ReferenceModel {
     /// Mutually incoherent point sources: Σ I_k/r_k² (spreading on) or Σ I_k (off).
     IncoherentSum {},
     /// Two-beam plate reflection at normal incidence with a Gaussian spectrum:
-    /// I1 + I2 + 2√(I1 I2)|γ(Δs)| cos(k0 Δs + φ) (PHYSICS.md §3).
+    /// I1 + I2 + 2√(I1 I2)|γ(Δs)| cos(k0 Δs + φ) (docs/PHYSICS.md §3).
     CoherenceGaussian {
         plate: String,
         /// Bandwidth (FWHM, nm) when the case's light is monochromatic (to measure another
