@@ -103,7 +103,7 @@ fn point(target: &Target) -> Result<DVec3, String> {
 }
 
 /// The reference's value at one probe point and wavelength (Intensity, Retardance and
-/// Visibility kinds; spacing references are evaluated by [`spacing`]).
+/// Visibility kinds; spacing references are evaluated in `run`).
 pub fn value(
     model: &ReferenceModel,
     built: &Built,

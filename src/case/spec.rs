@@ -448,7 +448,7 @@ pub struct TraceSpec {
     /// Geometric spreading (1/r² for point sources); off for the paper's figures.
     #[serde(default)]
     pub spreading: bool,
-    /// Regression tolerance against golden/<case>.csv (relative to the profile scale).
+    /// Regression tolerance against `golden/<case>.csv` (relative to the profile scale).
     #[serde(default = "golden_tol")]
     pub golden_tolerance: f64,
 }
