@@ -186,11 +186,15 @@ fn main() -> ExitCode {
                 }
             };
             let mut all = Vec::new();
+            let mut summaries = String::new();
             for (k, case) in loaded.iter().enumerate() {
                 let name = &case.spec.name;
                 eprintln!("tradeoff [{}/{}] {name}", k + 1, loaded.len());
                 let rows = fringe::tradeoff::measure(case, repeats);
-                outln!("{}", fringe::tradeoff::summary(name, &rows));
+                let line = fringe::tradeoff::summary(name, &rows);
+                outln!("{line}");
+                summaries.push_str(&line);
+                summaries.push('\n');
                 let path = out.join("tradeoff").join(format!("{name}_pareto.png"));
                 let written =
                     fringe::report::tradeoff_plot::pareto_png(name, &rows).and_then(|png| {
@@ -209,6 +213,22 @@ fn main() -> ExitCode {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
+            let path = out.join("tradeoff").join("summary.txt");
+            if let Err(e) = fringe::report::write_atomic(&path, summaries.as_bytes()) {
+                eprintln!("error: {}: cannot write: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            // The report page shows the verdicts and the Pareto plots.
+            if let Err(e) = fringe::report::html::write_index(&out) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            eprintln!(
+                "tradeoff: {} in {}, report {}",
+                "tradeoff.csv, summary.txt and the Pareto plots",
+                out.join("tradeoff").display(),
+                out.join("index.html").display()
+            );
             ExitCode::SUCCESS
         }
         Command::Render {

@@ -368,6 +368,7 @@ pub fn index_html(out: &Path) -> Result<String, String> {
             serde_json::from_str(&t).map_err(|e| format!("figures/figures.json: {e}"))?;
         figures_section(&mut h, out, &m);
     }
+    h.push_str(&super::tradeoff_plot::report_section(out).unwrap_or_default());
     h.push_str("</body></html>\n");
     Ok(h)
 }

@@ -6,6 +6,7 @@ use crate::fidelity::Fidelity;
 use crate::forward_study::StudyRow;
 use crate::tradeoff::{Measurement, TradeoffRow, pareto};
 use plotters::prelude::*;
+use std::path::Path;
 
 /// Deviations below this are drawn on the floor of the log axis.
 const FLOOR: f64 = 1e-17;
@@ -199,4 +200,59 @@ pub fn forward_png(rows: &[StudyRow]) -> Result<Vec<u8>, String> {
         }
         Ok(())
     })
+}
+
+/// The `fringe tradeoff` and `fringe forward` results for the report page, from the files those
+/// commands wrote under `out` (`tradeoff/summary.txt`, `tradeoff/<case>_pareto.png`,
+/// `forward/forward.png`); `None` when neither command has run into `out`.
+pub fn report_section(out: &Path) -> Option<String> {
+    use super::html::{base64, escape};
+    use std::fmt::Write as _;
+    let img = |path: &Path, alt: &str| -> Option<String> {
+        let bytes = std::fs::read(path).ok()?;
+        Some(format!(
+            "<img class=\"plot\" alt=\"{}\" src=\"data:image/png;base64,{}\">",
+            escape(alt),
+            base64(&bytes)
+        ))
+    };
+    let mut h = String::new();
+    if let Ok(text) = std::fs::read_to_string(out.join("tradeoff").join("summary.txt")) {
+        h.push_str("<h2 id=\"tradeoff\">Cost and accuracy of every setting (<code>fringe tradeoff</code>)</h2>\n");
+        h.push_str(
+            "<p>Every fidelity level × internal-reflection budget × spectral sample count of a \
+             case against its primary reference. The cheapest setting within the case's \
+             tolerance is ranked by the number of path events traced (deterministic), then by \
+             the simpler level; wall times (min, median, max of repeated runs) are information \
+             only. Settings that cannot be traced are rows of \
+             <a href=\"tradeoff/tradeoff.csv\">tradeoff.csv</a> with their reason.</p>\n<ul>\n",
+        );
+        for line in text.lines().filter(|l| !l.trim().is_empty()) {
+            let _ = writeln!(h, "<li>{}</li>", escape(line));
+        }
+        h.push_str("</ul>\n");
+        let mut plots: Vec<_> = std::fs::read_dir(out.join("tradeoff"))
+            .map(|d| {
+                d.filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.to_string_lossy().ends_with("_pareto.png"))
+                    .collect()
+            })
+            .unwrap_or_default();
+        plots.sort();
+        for p in plots {
+            let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+            if let Some(tag) = img(&p, name.as_deref().unwrap_or("Pareto plot")) {
+                h.push_str(&tag);
+            }
+        }
+    }
+    if let Some(tag) = img(&out.join("forward").join("forward.png"), "forward.png") {
+        h.push_str("<h2 id=\"forward\">Renderer mode (<code>fringe forward</code>)</h2>\n");
+        h.push_str(
+            "<p>Forward ray fans into pixels: each estimator's error against the exact tracer \
+             over rays per pixel and pixel size (<a href=\"forward/forward.csv\">forward.csv</a>).</p>\n",
+        );
+        h.push_str(&tag);
+    }
+    (!h.is_empty()).then_some(h)
 }

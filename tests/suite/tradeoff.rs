@@ -184,3 +184,21 @@ fn wall_time_spread() {
     assert_eq!((w.runs, w.min, w.median, w.max), (4, 1.0, 3.0, 8.0));
     assert!(WallTime::from_runs(&[]).is_none());
 }
+
+/// The report page shows what `fringe tradeoff` wrote into the same folder: the verdict lines
+/// (escaped) and a link to the CSV; without a tradeoff run the section is absent.
+#[test]
+fn report_page_shows_the_verdicts() {
+    let dir = tempfile::tempdir().unwrap();
+    let page = fringe::report::html::index_html(dir.path()).unwrap();
+    assert!(!page.contains("id=\"tradeoff\""), "no tradeoff run yet");
+    std::fs::create_dir_all(dir.path().join("tradeoff")).unwrap();
+    let line = "young_paper: cheapest setting within 1e-9: paper_rules <tie>";
+    std::fs::write(dir.path().join("tradeoff/summary.txt"), format!("{line}\n")).unwrap();
+    let page = fringe::report::html::index_html(dir.path()).unwrap();
+    assert!(page.contains("id=\"tradeoff\""), "section missing");
+    assert!(
+        page.contains("paper_rules &lt;tie&gt;") && page.contains("tradeoff/tradeoff.csv"),
+        "verdict line or CSV link missing"
+    );
+}
