@@ -224,8 +224,7 @@ fn main() -> ExitCode {
                 return ExitCode::from(2);
             }
             eprintln!(
-                "tradeoff: {} in {}, report {}",
-                "tradeoff.csv, summary.txt and the Pareto plots",
+                "tradeoff: tradeoff.csv, summary.txt and the Pareto plots in {}, report {}",
                 out.join("tradeoff").display(),
                 out.join("index.html").display()
             );
