@@ -12,6 +12,8 @@
 //! In the scalar rungs I_j is the ray's exact (vector) intensity, so a rung differs from
 //! `vector` only by the phase and polarization physics it drops.
 
+#![warn(missing_docs)]
+
 use serde::{Deserialize, Serialize};
 use std::fmt;
 

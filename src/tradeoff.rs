@@ -21,6 +21,8 @@
 //! point"), and a tail bound may ask for more reflections than the cap; such a setting is
 //! recorded as [`Outcome::NotTraced`] with the reason, and the other settings still run.
 
+#![warn(missing_docs)]
+
 use crate::case::load::{Case, CaseError};
 use crate::case::run;
 use crate::case::spec::{Light, ReferenceModel};

@@ -1,6 +1,8 @@
 //! Plots of the trade-off reports: the Pareto plot of one case (cost count vs error, log–log) and the
 //! renderer-mode study (error vs rays per pixel per estimator and pixel size).
 
+#![warn(missing_docs)]
+
 use super::plot::{err, level_colour, render_png as png};
 use crate::fidelity::Fidelity;
 use crate::forward_study::StudyRow;
