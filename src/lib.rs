@@ -147,6 +147,7 @@ pub mod geometry;
 pub mod interaction;
 pub mod material;
 pub mod memory;
+pub mod observable;
 pub mod path;
 pub mod ray;
 pub mod render;

@@ -5,9 +5,10 @@
 //! crate's frame), scaled by the splitter's amplitude √R (front side: −R_N, back side: +R_N,
 //! the Stokes relation r' = −r) or √(1−R) in transmission.
 
-use super::path_phasor;
+use super::precise;
 use glam::DVec3;
 use num_complex::Complex64;
+use twofloat::TwoFloat;
 
 /// One reflection of an arm: the plane and the signed amplitude factor σ in E_r = σ·R_N(E_i).
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -36,6 +37,23 @@ impl Arm {
             .fold(src, |x, r| x - 2.0 * (x - r.point).dot(r.normal) * r.normal)
     }
 
+    /// The distance from the virtual source to `p`, with the source mirrored through every
+    /// plane in double-double ([`super::precise`]): a 10 m arm keeps its length to ~1e-30 m,
+    /// where an f64 image point is off by ~1e-15 m (2e-8 rad at 550 nm).
+    pub fn distance(&self, src: DVec3, p: DVec3) -> TwoFloat {
+        let mut x = [src.x, src.y, src.z].map(TwoFloat::from);
+        for r in &self.reflections {
+            let rel = [x[0] - r.point.x, x[1] - r.point.y, x[2] - r.point.z];
+            let k = precise::dot(&rel, r.normal) * 2.0;
+            x = [
+                x[0] - k * r.normal.x,
+                x[1] - k * r.normal.y,
+                x[2] - k * r.normal.z,
+            ];
+        }
+        precise::length(&[p.x - x[0], p.y - x[1], p.z - x[2]])
+    }
+
     /// Field (without path phase) arriving at `p` for a launch field given as a function of
     /// the launch direction; the launch direction is the arrival direction mirrored back.
     pub fn field(
@@ -62,18 +80,20 @@ impl Arm {
 }
 
 /// Intensity at `p` for one linear channel (launch field direction from `launch_field`,
-/// unit intensity), arms mutually coherent, spreading off: |Σ_arms E_a e^{i2π r_a/λ}|².
+/// unit intensity), arms mutually coherent, spreading off, in a medium of index `n`:
+/// |Σ_arms E_a e^{i2π n r_a/λ}|².
 pub fn intensity(
     arms: &[Arm],
     src: DVec3,
     p: DVec3,
     lambda_m: f64,
+    n: f64,
     launch_field: impl Fn(DVec3) -> DVec3 + Copy,
 ) -> f64 {
     let mut sum = [Complex64::default(); 3];
     for arm in arms {
-        let (e, r) = arm.field(src, p, launch_field);
-        let ph = path_phasor(r, lambda_m);
+        let (e, _) = arm.field(src, p, launch_field);
+        let ph = precise::path_phasor(arm.distance(src, p) * n, lambda_m);
         for (k, c) in [e.x, e.y, e.z].into_iter().enumerate() {
             sum[k] += ph * c;
         }

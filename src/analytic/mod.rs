@@ -8,6 +8,7 @@ pub mod coherence;
 pub mod lloyd;
 pub mod michelson;
 pub mod plate;
+pub mod precise;
 pub mod tir;
 pub mod wedge;
 pub mod young;

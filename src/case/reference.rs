@@ -3,7 +3,8 @@
 //! scene and its reference cannot disagree; each says clearly when a scene does not fit it.
 
 use super::build::{Built, plane_wave};
-use super::spec::{BeamSpec, ReferenceModel};
+use super::spec::{BeamSpec, FarSide, Observer, ReferenceModel};
+use crate::observable::{Observable, Returns, power_factor};
 use crate::analytic::{self, michelson, plate::Pol};
 use crate::fresnel;
 use crate::path::Target;
@@ -37,6 +38,77 @@ pub fn kind(model: &ReferenceModel) -> MetricKind {
     }
 }
 
+/// What an intensity-kind closed form returns (`None` for spacing, retardance and visibility
+/// references, which are not intensities).
+pub fn returns(model: &ReferenceModel) -> Option<Returns> {
+    Some(match model {
+        ReferenceModel::Airy { .. }
+        | ReferenceModel::CoherenceGaussian { .. }
+        | ReferenceModel::CoherenceP9 { .. } => Returns::Power,
+        ReferenceModel::PlaneWaveBeams { .. } => Returns::AsProbe,
+        ReferenceModel::YoungExact {}
+        | ReferenceModel::YoungParaxial {}
+        | ReferenceModel::Lloyd {}
+        | ReferenceModel::TwoBeamPlate { .. }
+        | ReferenceModel::Wedge { .. }
+        | ReferenceModel::Michelson { .. }
+        | ReferenceModel::IncoherentSum {} => Returns::FieldIntensity,
+        ReferenceModel::YoungSpacing { .. }
+        | ReferenceModel::WedgeSpacing { .. }
+        | ReferenceModel::RhombRetardance { .. }
+        | ReferenceModel::LloydVisibility {} => return None,
+    })
+}
+
+/// What a probe point observing through `observer` measures (PHYSICS.md §3a): R or T for the
+/// far field of a plane wave at a surface, |E|² everywhere else.
+pub fn measured(observer: &Observer) -> Observable {
+    match observer {
+        Observer::FarField {
+            side: FarSide::Reflected,
+            ..
+        } => Observable::Reflectance,
+        Observer::FarField {
+            side: FarSide::Transmitted,
+            ..
+        } => Observable::Transmittance,
+        Observer::Point { .. } | Observer::Direction { .. } => Observable::FieldIntensity,
+    }
+}
+
+/// The factor turning the traced far-field |E|² into the observable `observer` measures at
+/// vacuum wavelength `lambda_m` ([`crate::observable::power_factor`]; 1 for |E|² and for R).
+pub fn observable_factor(
+    observer: &Observer,
+    built: &Built,
+    target: &Target,
+    lambda_m: f64,
+) -> Result<f64, String> {
+    let Observer::FarField {
+        side: FarSide::Transmitted,
+        surface_normal,
+        exit_medium,
+    } = observer
+    else {
+        return Ok(1.0);
+    };
+    let Target::Direction { dir, .. } = target else {
+        return Ok(1.0);
+    };
+    let (d_in, _) = plane_wave(&built.scene).ok_or("a far_field observer needs a plane wave")?;
+    let n_in = built
+        .scene
+        .ambient
+        .index(lambda_m)
+        .map_err(|e| e.to_string())?;
+    let n_out = match exit_medium {
+        Some(m) => index(built, m, lambda_m)?,
+        None => n_in,
+    };
+    let normal = DVec3::from_array(*surface_normal);
+    Ok(power_factor(n_in, d_in, n_out, *dir, normal))
+}
+
 /// Short name of a reference model for tables (the serde tag).
 pub fn name(model: &ReferenceModel) -> String {
     serde_json::to_value(model)
@@ -48,6 +120,15 @@ pub fn name(model: &ReferenceModel) -> String {
 fn index(built: &Built, medium: &str, lambda_m: f64) -> Result<f64, String> {
     built
         .medium(medium)?
+        .index(lambda_m)
+        .map_err(|e| e.to_string())
+}
+
+/// The index of the ambient medium (where sources and screen points sit) at `lambda_m`.
+pub fn ambient_index(built: &Built, lambda_m: f64) -> Result<f64, String> {
+    built
+        .scene
+        .ambient
         .index(lambda_m)
         .map_err(|e| e.to_string())
 }
@@ -120,8 +201,11 @@ pub fn value(
             }
             let f = axis_fraction(ls[0].0, ls[0].2)?;
             let p = point(target)?;
+            let n = ambient_index(built, lambda_m)?;
             Ok(ls[0].0.intensity
-                * analytic::young::exact_line_sources(ls[0].1, ls[1].1, ls[0].2, p, lambda_m, f))
+                * analytic::young::exact_line_sources(
+                    ls[0].1, ls[1].1, ls[0].2, p, lambda_m, n, f,
+                ))
         }
         ReferenceModel::YoungParaxial {} => {
             let ls = line_sources(built)?;
@@ -136,8 +220,15 @@ pub fn value(
             let across = sep / d;
             let forward = axis.cross(across).normalize();
             let rel = p - mid;
+            let n = ambient_index(built, lambda_m)?;
             Ok(ls[0].0.intensity
-                * analytic::young::paraxial(d, rel.dot(forward).abs(), rel.dot(across), lambda_m))
+                * analytic::young::paraxial(
+                    d,
+                    rel.dot(forward).abs(),
+                    rel.dot(across),
+                    lambda_m,
+                    n,
+                ))
         }
         ReferenceModel::Lloyd {} | ReferenceModel::LloydVisibility {} => {
             let ls = line_sources(built)?;
@@ -245,7 +336,15 @@ pub fn value(
                 built.surface(&format!("{wedge}.bottom"))?,
             );
             let (tp, bp) = (&scene.surfaces[top].plane, &scene.surfaces[bottom].plane);
-            let SurfaceKind::Interface { back: glass, .. } = &scene.surfaces[top].kind else {
+            let (
+                SurfaceKind::Interface {
+                    front: above,
+                    back: glass,
+                    ..
+                },
+                SurfaceKind::Interface { back: below, .. },
+            ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
+            else {
                 return Err("wedge faces must be interfaces".into());
             };
             let (d, reference) = plane_wave(scene).ok_or("wedge needs a plane-wave source")?;
@@ -258,14 +357,19 @@ pub fn value(
             let hinge = tp.normal.cross(bp.normal).normalize();
             let x_axis = hinge.cross(tp.normal);
             let src = &scene.sources[0];
+            // The hinge of a wedge of angle α is known to ~1e-16/α rad from its two normals;
+            // a field ε off the hinge changes the intensity by O(ε²), so 1e-7 is exact enough.
             for ch in src.channels() {
-                if ch.field_direction(d).cross(hinge).length() > 1e-12 {
+                if ch.field_direction(d).cross(hinge).length() > 1e-7 {
                     return Err("wedge needs s polarization (field along the hinge axis)".into());
                 }
             }
             let p = point(target)?;
+            let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
             let w = analytic::wedge::Wedge {
-                n: glass.index(lambda_m).map_err(|e| e.to_string())?,
+                n1: ix(above)?,
+                n: ix(glass)?,
+                n3: ix(below)?,
                 alpha_rad: alpha,
                 t0_m: -tp.signed_distance(bp.point),
                 h_src_m: tp.signed_distance(reference),
@@ -503,17 +607,18 @@ fn plane_wave_beams(
                 ));
             }
             let cos_i = u.dot(nrm).abs();
-            // One plane of incidence: every event's s is ± the first one. The coefficients are
-            // unchanged when s (and with it every p) flips, so one s serves all events.
-            let s = fresnel::s_direction(u, nrm, s_axis.unwrap_or(DVec3::Y));
-            match s_axis {
-                Some(prev) if prev.cross(s).length() > 1e-9 => {
+            // One plane of incidence: every oblique event's s is ± the first one. The
+            // coefficients are unchanged when s (and with it every p) flips, so one s serves
+            // all events. An event at normal incidence does not constrain s: it multiplies the
+            // 3D field by r (or t) whatever the frame (r_p = −r_s with p_r = −p_i, t_p = t_s).
+            match (fresnel::s_of_plane_of_incidence(u, nrm), s_axis) {
+                (Some(s), Some(prev)) if prev.cross(s).length() > 1e-9 => {
                     return Err(
                         "plane_wave_beams needs every event in one plane of incidence".into(),
                     );
                 }
-                Some(_) => {}
-                None => s_axis = Some(s),
+                (Some(s), None) => s_axis = Some(s),
+                _ => {}
             }
             let f = fresnel::fresnel(n1, n2, cos_i);
             op += n * u.dot(surf.plane.point - q);
@@ -584,6 +689,12 @@ fn michelson_ref(
     let mut arms = Vec::new();
     for m in mirrors {
         let mi = &scene.surfaces[built.surface(m)?];
+        if !matches!(mi.kind, SurfaceKind::IdealMirror { .. }) {
+            return Err(format!(
+                "{m:?} must be a mirror (the michelson closed form treats it as a perfect \
+                 conductor), got another kind of surface"
+            ));
+        }
         let mirror = michelson::Reflection {
             point: mi.plane.point,
             normal: mi.plane.normal,
@@ -607,11 +718,13 @@ fn michelson_ref(
             }
         });
     }
+    let n = ambient_index(built, lambda_m)?;
     Ok(src
         .channels()
         .iter()
         .map(|ch: &Channel| {
-            ch.intensity * michelson::intensity(&arms, s, p, lambda_m, |d| ch.field_direction(d))
+            ch.intensity
+                * michelson::intensity(&arms, s, p, lambda_m, n, |d| ch.field_direction(d))
         })
         .sum())
 }
@@ -679,7 +792,8 @@ pub fn coherence(
                 .intersect(r0, d)
                 .ok_or("the plane wave misses the plate")?;
             let d_r = fresnel::reflect(d, top.normal);
-            let op1 = h - d_r.dot(r0 + h * d - *reference);
+            let n1 = film.n1;
+            let op1 = n1 * (h - d_r.dot(r0 + h * d - *reference));
             let op2 = op1 + ds;
             let l = src.coherence_length_m;
             let mut sum = 0.0;

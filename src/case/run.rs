@@ -4,13 +4,15 @@
 use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
 use super::reference::{self, MetricKind};
-use super::spec::{Light, Observer, Probe, ReferenceModel};
+use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
+use crate::observable::{Observable, Returns, check_match};
 use crate::accumulate::Accumulator;
 use crate::fidelity::{self, Fidelity, SceneNeeds};
 use crate::path::{EnumerationLimits, SolveOptions, Target};
 use crate::source::Emitter;
 use crate::trace::{self, Arrival, TraceSettings};
 use glam::DVec3;
+use num_complex::Complex64;
 use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::time::Instant;
@@ -66,6 +68,16 @@ impl MetricResult {
         )
     }
 
+    /// The quantity compared, with its unit: the probe's observable for intensity references.
+    pub fn quantity(&self, observable: Observable) -> &'static str {
+        match self.kind {
+            MetricKind::Intensity => observable.label(),
+            MetricKind::FringeSpacing => "fringe spacing (m)",
+            MetricKind::Retardance => "retardance arg E_p − arg E_s (rad)",
+            MetricKind::Visibility => "fringe visibility",
+        }
+    }
+
     pub fn stats(&self, level: Fidelity) -> Option<LevelStats> {
         let d = self.deviations(level)?;
         let (mut max, mut at) = (0.0f64, self.coordinates.first().copied().unwrap_or(0.0));
@@ -111,6 +123,8 @@ pub struct CaseResult {
     pub internal_reflections: usize,
     /// Probe points that no light reached.
     pub dark_points: usize,
+    /// What the probe measures (intensity references compare this observable).
+    pub observable: Observable,
 }
 
 struct PointOut {
@@ -322,7 +336,13 @@ fn special_value(
             let d_out = arr.first()?.vector.dir;
             let p = d_out.cross(s);
             let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
-            Some(reference::wrap(dot(p).arg() - dot(s).arg()))
+            // The retardance is what the TIRs add: the output's relative phase of p and s minus
+            // the input's (0 or π for linear light: a field at −45° starts at π).
+            let src = built.scene.sources.first()?;
+            let e_in = src.channels().first()?.field_direction(d_in);
+            let phase_in = Complex64::from(e_in.dot(d_in.cross(s))).arg()
+                - Complex64::from(e_in.dot(s)).arg();
+            Some(reference::wrap(dot(p).arg() - dot(s).arg() - phase_in))
         }
         ReferenceModel::LloydVisibility {} => {
             if level != Fidelity::Vector {
@@ -369,8 +389,11 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
         let target = build::target(&pt.observer, &built, lambda)
             .map_err(|e| case_err(case, "$.probe", e))?;
         let arr = arrivals_at(&built, &optics, &target, &pt.observer, &st);
+        // |E|² → the observable the probe measures (R or T of a plane wave in the far field).
+        let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
+            .map_err(|e| case_err(case, "$.probe", e))?;
         for l in levels {
-            *out.intensity.get_mut(l).unwrap() += w * trace::intensity(&arr, *l);
+            *out.intensity.get_mut(l).unwrap() += w * factor * trace::intensity(&arr, *l);
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity
@@ -381,6 +404,10 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             {
                 let v = reference::value(&r.model, &built, &target, lambda, spec.trace.spreading)
                     .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
+                let v = match reference::returns(&r.model) {
+                    Some(Returns::AsProbe) => v * factor,
+                    _ => v,
+                };
                 out.analytic[ri] += w * v;
             }
         }
@@ -499,10 +526,11 @@ fn analytic_spacing(
             let d = sep.length();
             let forward = srcs[0].1.cross(sep / d).normalize();
             let l = (p0 - 0.5 * (srcs[0].0 + srcs[1].0)).dot(forward).abs();
+            let n = reference::ambient_index(built, lambda)?;
             Ok(if *paraxial {
-                crate::analytic::young::fringe_spacing_paraxial(d, l, lambda)
+                crate::analytic::young::fringe_spacing_paraxial(d, l, lambda, n)
             } else {
-                crate::analytic::young::fringe_spacing_exact_on_axis(d, l, lambda)
+                crate::analytic::young::fringe_spacing_exact_on_axis(d, l, lambda, n)
             })
         }
         ReferenceModel::WedgeSpacing { wedge, small_angle } => {
@@ -536,6 +564,7 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         .clone()
         .unwrap_or_else(|| Fidelity::ALL.to_vec());
     let points = build::probe_points(&spec.probe);
+    let measured = check_observables(case, &points)?;
     let t0 = Instant::now();
     let outs: Vec<PointOut> = points
         .par_iter()
@@ -626,11 +655,134 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         convergence: Vec::new(),
         internal_reflections: outs.iter().map(|o| o.internal).max().unwrap_or(0),
         dark_points,
+        observable: measured,
     };
     if convergence_report {
         result.convergence = convergence(case, &points)?;
     }
     Ok(result)
+}
+
+/// What the probe measures, after checking that every intensity reference returns the same
+/// observable (PHYSICS.md §3a) and that the observer makes sense: a mismatch is bad input.
+fn check_observables(case: &Case, points: &[ProbePoint]) -> Result<Observable, CaseError> {
+    let spec = &case.spec;
+    let observer = &points
+        .first()
+        .ok_or_else(|| case_err(case, "$.probe", "the probe has no points"))?
+        .observer;
+    if let Observer::FarField {
+        side: FarSide::Reflected,
+        exit_medium: Some(m),
+        ..
+    } = observer
+        && *m != spec.scene.ambient
+    {
+        return Err(case_err(
+            case,
+            &format!("{}.exit_medium", observer_path(&spec.probe)),
+            format!(
+                "the reflected wave leaves into the ambient medium {:?}, not {m:?}: \
+                 exit_medium is for the transmitted side (omit it here)",
+                spec.scene.ambient
+            ),
+        ));
+    }
+    check_wiring(case, observer)?;
+    let measured = reference::measured(observer);
+    for (ri, r) in spec.references.iter().enumerate() {
+        if let Some(returns) = reference::returns(&r.model) {
+            check_match(&reference::name(&r.model), returns, measured)
+                .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
+        }
+    }
+    Ok(measured)
+}
+
+/// Every surface a reference names must be of the kind its closed form describes, and a
+/// far-field observer of an Airy film must look along the film's normal: a reference wired to
+/// the wrong thing is bad input, never a NaN row or a deviation of 1.
+fn check_wiring(case: &Case, observer: &Observer) -> Result<(), CaseError> {
+    let spec = &case.spec;
+    let kind_of = |name: &str| {
+        spec.scene
+            .surfaces
+            .iter()
+            .find(|s| s.name() == name)
+            .map(|s| s.kind())
+    };
+    for (ri, r) in spec.references.iter().enumerate() {
+        let (key, named, wanted): (&str, Vec<&String>, &str) = match &r.model {
+            ReferenceModel::Airy { film, .. } => ("film", vec![film], "plate"),
+            ReferenceModel::TwoBeamPlate { plate }
+            | ReferenceModel::CoherenceGaussian { plate, .. }
+            | ReferenceModel::CoherenceP9 { plate } => ("plate", vec![plate], "plate"),
+            ReferenceModel::Wedge { wedge } | ReferenceModel::WedgeSpacing { wedge, .. } => {
+                ("wedge", vec![wedge], "wedge")
+            }
+            ReferenceModel::Michelson { splitter, .. } => ("splitter", vec![splitter], "splitter"),
+            _ => continue,
+        };
+        let mut checks = vec![(key.to_string(), named, wanted)];
+        if let ReferenceModel::Michelson { mirrors, .. } = &r.model {
+            checks.push(("mirrors".into(), mirrors.iter().collect(), "mirror"));
+        }
+        for (key, names, wanted) in checks {
+            for (k, name) in names.iter().enumerate() {
+                let path = if key == "mirrors" {
+                    format!("$.references[{ri}].model.michelson.mirrors[{k}]")
+                } else {
+                    format!("$.references[{ri}].model.{}.{key}", reference::name(&r.model))
+                };
+                match kind_of(name) {
+                    Some(found) if found == wanted => {}
+                    Some(found) => {
+                        return Err(case_err(
+                            case,
+                            &path,
+                            format!(
+                                "{name:?} is a {found}; {} describes a {wanted} here",
+                                reference::name(&r.model)
+                            ),
+                        ));
+                    }
+                    None => {} // a missing name is reported by the loader
+                }
+            }
+        }
+        if let (
+            ReferenceModel::Airy { film, .. },
+            Observer::FarField { surface_normal, .. },
+        ) = (&r.model, observer)
+            && let Some(crate::case::spec::SurfaceSpec::Plate { normal, .. }) =
+                spec.scene.surfaces.iter().find(|s| s.name() == film)
+        {
+            let (a, b) = (
+                DVec3::from_array(*surface_normal).normalize(),
+                DVec3::from_array(*normal).normalize(),
+            );
+            if a.cross(b).length() > 1e-9 {
+                return Err(case_err(
+                    case,
+                    &format!("{}.surface_normal", observer_path(&spec.probe)),
+                    format!(
+                        "the far field of the airy film {film:?} is observed about the film's \
+                         normal {b:?}; this surface_normal {a:?} is not parallel to it"
+                    ),
+                ));
+            }
+        }
+    }
+    Ok(())
+}
+
+/// The JSON path of a probe's observer (`$.probe.<kind>.observe.far_field`), for errors.
+fn observer_path(probe: &Probe) -> String {
+    match probe {
+        Probe::Sweep { .. } => "$.probe.sweep.observe.far_field".into(),
+        Probe::Single { .. } => "$.probe.single.observe.far_field".into(),
+        _ => "$.probe".into(),
+    }
 }
 
 /// For cases with an Airy reference: the traced error against the number of reflected orders,
@@ -674,10 +826,13 @@ fn convergence(case: &Case, points: &[ProbePoint]) -> Result<Vec<ConvergenceRow>
                 let target = build::target(&pt.observer, &built, lambda)
                     .map_err(|e| case_err(case, "$.probe", e))?;
                 let st = settings(case, &built, internal);
-                let traced = trace::intensity(
-                    &arrivals_at(&built, &optics, &target, &pt.observer, &st),
-                    Fidelity::Vector,
-                );
+                let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
+                    .map_err(|e| case_err(case, "$.probe", e))?;
+                let traced = factor
+                    * trace::intensity(
+                        &arrivals_at(&built, &optics, &target, &pt.observer, &st),
+                        Fidelity::Vector,
+                    );
                 let exact =
                     reference::value(&spec.references[ri].model, &built, &target, lambda, false)
                         .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;

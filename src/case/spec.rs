@@ -187,6 +187,19 @@ impl SurfaceSpec {
             | SurfaceSpec::OpaqueScreen { name, .. } => name,
         }
     }
+
+    /// The serde tag of the surface's kind (`plate`, `mirror`, …).
+    pub fn kind(&self) -> &'static str {
+        match self {
+            SurfaceSpec::Interface { .. } => "interface",
+            SurfaceSpec::Plate { .. } => "plate",
+            SurfaceSpec::Wedge { .. } => "wedge",
+            SurfaceSpec::Mirror { .. } => "mirror",
+            SurfaceSpec::Splitter { .. } => "splitter",
+            SurfaceSpec::Shield { .. } => "shield",
+            SurfaceSpec::OpaqueScreen { .. } => "opaque_screen",
+        }
+    }
 }
 
 /// The geometry of a source.

@@ -95,7 +95,7 @@ pub fn rows(r: &CaseResult) -> Vec<Row> {
 pub fn profile_csv(r: &CaseResult) -> String {
     let mut s = String::new();
     let levels = &r.levels;
-    let _ = write!(s, "reference,coordinate,analytic");
+    let _ = write!(s, "reference,quantity,coordinate,analytic");
     for l in levels {
         let _ = write!(s, ",traced_{l},deviation_{l}");
     }
@@ -105,8 +105,11 @@ pub fn profile_csv(r: &CaseResult) -> String {
         for i in 0..m.coordinates.len() {
             let _ = write!(
                 s,
-                "{},{:.17e},{:.17e}",
-                m.name, m.coordinates[i], m.analytic[i]
+                "{},{},{:.17e},{:.17e}",
+                m.name,
+                m.quantity(r.observable), // labels hold no comma
+                m.coordinates[i],
+                m.analytic[i]
             );
             for (k, l) in levels.iter().enumerate() {
                 match (m.traced.get(l), &devs[k]) {

@@ -170,7 +170,7 @@ pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, Str
             let decimals = (-(y1 - y0).log10()).ceil().clamp(0.0, 12.0) as usize + 1;
             chart
                 .configure_mesh()
-                .y_desc("value")
+                .y_desc(m.quantity(r.observable))
                 .y_label_formatter(&|v| format!("{v:.decimals$}"))
                 .label_style(("sans-serif", 13))
                 .light_line_style(WHITE.mix(0.0))

@@ -28,3 +28,5 @@ mod stability_report;
 mod tradeoff;
 mod trail;
 mod young_two_point;
+mod truth;
+mod closed_form_precision;

@@ -1,0 +1,280 @@
+//! The gate's verdicts hold outside the library's comfortable corner (issue "truth across every
+//! valid scene"): closed forms take their media from the scene, traced values and closed forms
+//! are the same observable, and a rigid motion of a scene changes neither values nor verdicts.
+
+use fringe::case::load::{self, Case};
+use fringe::case::run::{self, CaseResult};
+use fringe::fidelity::Fidelity;
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+
+fn library(name: &str) -> Value {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("cases/{name}.json"));
+    serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap()
+}
+
+fn parse(v: &Value) -> Case {
+    load::parse(Path::new("edited.json"), &v.to_string()).expect("a valid case")
+}
+
+/// Every metric with a `vector` tolerance: (metric, max deviation, tolerance).
+fn vector_rows(r: &CaseResult) -> Vec<(String, f64, f64)> {
+    r.metrics
+        .iter()
+        .filter_map(|m| {
+            let tol = *m.tolerances.get(&Fidelity::Vector)?;
+            let s = m.stats(Fidelity::Vector)?;
+            Some((m.name.clone(), s.max_abs_dev, tol))
+        })
+        .collect()
+}
+
+fn assert_passes(name: &str, r: &CaseResult) {
+    for (metric, dev, tol) in vector_rows(r) {
+        assert!(
+            dev <= tol,
+            "{name}: {metric}: traced vs closed form {dev:e} > tolerance {tol:e}"
+        );
+    }
+}
+
+/// Young, the wedge, the Michelson and the paper's coherence rule in water (n = 1.333) instead
+/// of air: the tracer is right there, so every closed form must agree with it. Before the
+/// closed forms read the ambient index, each of these failed by O(1) (the phase 2π(r1 − r2)/λ
+/// misses the factor n). The values must also differ from the case in air, so the test cannot
+/// pass by ignoring the medium on both sides.
+#[test]
+fn closed_forms_take_their_media_from_the_scene() {
+    for name in [
+        "young_paper",
+        "wedge_fizeau",
+        "michelson",
+        "coherence_length_paper_rule",
+    ] {
+        let mut doc = library(name);
+        let in_air = run::run_with(&parse(&doc), false).unwrap();
+        doc["scene"]["media"]["air"] = json!({ "constant": { "n": 1.333 } });
+        let in_water = run::run_with(&parse(&doc), false).unwrap();
+        assert_passes(name, &in_water);
+        let primary = |r: &CaseResult| r.metrics[0].analytic.clone();
+        let moved = primary(&in_air)
+            .iter()
+            .zip(primary(&in_water))
+            .map(|(a, w)| (a - w).abs())
+            .fold(0.0, f64::max);
+        assert!(moved > 1e-3, "{name}: the closed form ignores the medium");
+    }
+}
+
+/// The oil film on water observed in transmission: the closed form returns the power
+/// transmittance T = (n3 cos θ3)/(n1 cos θ1)|t|², and the far-field probe now measures the same
+/// (before, the trace reported |t|² and every such scene failed by n3 cos θ3/(n1 cos θ1)).
+/// Independently of any closed form, the traced R and T of the lossless film add up to 1.
+#[test]
+fn a_film_on_a_substrate_is_compared_as_power_transmittance() {
+    let reflected = library("thin_film_on_substrate");
+    let mut transmitted = reflected.clone();
+    let observe = &mut transmitted["probe"]["sweep"]["observe"]["far_field"];
+    observe["side"] = json!("transmitted");
+    observe["exit_medium"] = json!("water");
+    let r = run::run_with(&parse(&reflected), false).unwrap();
+    let t = run::run_with(&parse(&transmitted), false).unwrap();
+    assert_passes("transmitted", &t);
+    assert_eq!(t.observable, fringe::observable::Observable::Transmittance);
+    let (rv, tv) = (
+        &r.metrics[0].traced[&Fidelity::Vector],
+        &t.metrics[0].traced[&Fidelity::Vector],
+    );
+    for (k, (a, b)) in rv.iter().zip(tv).enumerate() {
+        assert!(
+            (a + b - 1.0).abs() < 1e-12,
+            "point {k}: traced R + T = {} + {} = {}",
+            a,
+            b,
+            a + b
+        );
+    }
+}
+
+/// A single face 1 → 1.5 at normal incidence traced as one plane-wave beam into the glass:
+/// T = 4n/(1 + n)² = 0.96, not |t|² = 0.64 (B&W §1.5.3).
+#[test]
+fn one_face_transmits_four_n_over_one_plus_n_squared() {
+    let doc = json!({
+        "name": "one_face",
+        "description": "one face",
+        "formula": "T = 4n/(1+n)^2",
+        "light": { "monochrome": { "wavelength_nm": 550 } },
+        "scene": {
+            "ambient": "air",
+            "media": { "air": { "constant": { "n": 1.0 } }, "glass": { "constant": { "n": 1.5 } } },
+            "surfaces": [ { "interface": { "name": "face", "point_m": [0, 0, 0], "normal": [0, 0, 1],
+                                           "front": "air", "back": "glass" } } ],
+            "sources": [ { "name": "beam",
+                "emitter": { "plane_wave": { "direction": [0, 0, -1], "reference_point_m": [0, 0, 0.001] } },
+                "polarization": { "linear": { "reference": [0, 1, 0], "angle_deg": 0 } } } ]
+        },
+        "probe": { "single": { "observe": { "far_field": {
+            "side": "transmitted", "surface_normal": [0, 0, 1], "exit_medium": "glass" } } } },
+        "references": [ { "model": { "plane_wave_beams": { "beams": [
+            { "source": "beam", "events": [ { "surface": "face", "reflect": false } ] } ] } },
+            "tolerances": { "vector": 1e-12 } } ],
+        "fidelities": ["vector"]
+    });
+    let r = run::run_with(&parse(&doc), false).unwrap();
+    let expected = 4.0 * 1.5 / (2.5f64 * 2.5);
+    for v in [r.metrics[0].analytic[0], r.metrics[0].traced[&Fidelity::Vector][0]] {
+        assert!(
+            (v - expected).abs() < 1e-14,
+            "actual {v:e}, expected {expected:e}"
+        );
+    }
+}
+
+/// A closed form and a probe that measure different things cannot be compared: the Airy power
+/// reflectance at a screen point, and an `exit_medium` on the reflected side (where the wave
+/// leaves into the ambient), are bad input naming the key.
+#[test]
+fn a_mismatched_observable_is_refused() {
+    let mut doc = library("plate_airy_s");
+    doc["probe"] = json!({ "single": { "observe": { "point": { "position_m": [0, 0, 0.01] } } } });
+    doc["trace"] = json!({});
+    let e = run::run_with(&parse(&doc), false).unwrap_err();
+    assert_eq!(e.json_path, "$.references[0].model", "{e}");
+    assert!(e.message.contains("power reflectance"), "{e}");
+
+    let mut doc = library("plate_airy_s");
+    doc["probe"]["sweep"]["observe"]["far_field"]["exit_medium"] = json!("glass");
+    let e = run::run_with(&parse(&doc), false).unwrap_err();
+    assert_eq!(
+        e.json_path, "$.probe.sweep.observe.far_field.exit_medium",
+        "{e}"
+    );
+}
+
+/// Keys whose 3-vectors are directions (rotated); other 3-vectors with a `_m` key are points
+/// (rotated and translated). Sellmeier coefficients (`b`, `c_um2`) are not vectors.
+const DIRECTION_KEYS: [&str; 10] = [
+    "normal",
+    "axis",
+    "direction",
+    "reference",
+    "u_axis",
+    "v_axis",
+    "hinge_axis",
+    "in_plane_axis",
+    "surface_normal",
+    "looks_toward",
+];
+
+/// The case `doc` moved rigidly: every point p ↦ q·p + shift, every direction d ↦ q·d.
+fn moved(doc: &Value, q: glam::DQuat, shift: glam::DVec3) -> Value {
+    fn walk(v: &mut Value, key: &str, q: glam::DQuat, shift: glam::DVec3) {
+        match v {
+            Value::Object(map) => {
+                for (k, x) in map.iter_mut() {
+                    walk(x, k, q, shift);
+                }
+            }
+            Value::Array(items) => {
+                let nums: Option<Vec<f64>> = items.iter().map(Value::as_f64).collect();
+                match nums {
+                    Some(n) if n.len() == 3 && (key.ends_with("_m") || DIRECTION_KEYS.contains(&key)) => {
+                        let p = glam::DVec3::from_slice(&n);
+                        let r = if key.ends_with("_m") { q * p + shift } else { q * p };
+                        *v = json!([r.x, r.y, r.z]);
+                    }
+                    _ => items.iter_mut().for_each(|x| walk(x, key, q, shift)),
+                }
+            }
+            _ => {}
+        }
+    }
+    let mut out = doc.clone();
+    walk(&mut out, "", q, shift);
+    out
+}
+
+/// A rigid rotation (about axes no case is aligned with) and a 1 cm translation of every library
+/// case: every `vector` row still passes its tolerance and the traced primary profile is the
+/// same to within that tolerance (relative to its largest value). Before, rotated TIR and rhomb
+/// scenes were refused ("needs every event in one plane of incidence": at a normal-incidence
+/// face s fell back to a fixed axis), and a rotated small-angle wedge was refused as "needs s
+/// polarization" by a 1e-12 test on a hinge known only to ~1e-16/α.
+#[test]
+fn a_rigid_motion_changes_neither_values_nor_verdicts() {
+    let motions = [
+        (glam::DVec3::new(1.0, 2.0, 3.0), 0.7, glam::DVec3::new(0.01, -0.004, 0.002)),
+        (glam::DVec3::new(-2.0, 0.5, 1.0), 2.9, glam::DVec3::new(-0.003, 0.008, 0.005)),
+    ];
+    for file in crate::support::library::case_files() {
+        let name = file.file_stem().unwrap().to_string_lossy().to_string();
+        let doc = library(&name);
+        let base = run::run_with(&parse(&doc), false).unwrap();
+        for (axis, angle, shift) in motions {
+            let q = glam::DQuat::from_axis_angle(axis.normalize(), angle);
+            let r = run::run_with(&parse(&moved(&doc, q, shift)), false)
+                .unwrap_or_else(|e| panic!("{name} rotated by {angle} about {axis}: {e}"));
+            assert_passes(&format!("{name} rotated by {angle} about {axis}"), &r);
+            for (m0, m1) in base.metrics.iter().zip(&r.metrics) {
+                let (Some(tol), Some(a), Some(b)) = (
+                    m0.tolerances.get(&Fidelity::Vector),
+                    m0.traced.get(&Fidelity::Vector),
+                    m1.traced.get(&Fidelity::Vector),
+                ) else {
+                    continue;
+                };
+                let scale = a.iter().fold(1e-15f64, |s, x| s.max(x.abs()));
+                for (k, (x, y)) in a.iter().zip(b).enumerate() {
+                    assert!(
+                        (x - y).abs() <= tol * scale,
+                        "{name} {}: point {k}: {x:e} before, {y:e} after the motion",
+                        m0.name
+                    );
+                }
+            }
+        }
+    }
+}
+
+/// A reference wired to a surface of the wrong kind, or an Airy film observed about another
+/// normal, is bad input at the key that names it (before: NaN rows or deviations of 1).
+#[test]
+fn references_must_match_their_scene() {
+    // The wedge reference naming a plate.
+    let mut doc = library("wedge_fizeau");
+    let wedge = doc["scene"]["surfaces"][0]["wedge"].clone();
+    doc["scene"]["surfaces"][0] = json!({ "plate": {
+        "name": wedge["name"], "top_point_m": wedge["top_point_m"], "normal": wedge["normal"],
+        "thickness_um": wedge["thickness_um"], "medium": wedge["medium"],
+        "above": wedge["above"], "below": wedge["below"] } });
+    let e = run::run_with(&parse(&doc), false).unwrap_err();
+    assert_eq!(e.json_path, "$.references[0].model.wedge.wedge", "{e}");
+    assert!(e.message.contains("is a plate"), "{e}");
+
+    // A Michelson "mirror" that is a splitter.
+    let mut doc = library("michelson");
+    let k = doc["scene"]["surfaces"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .position(|s| s.get("mirror").is_some())
+        .unwrap();
+    let m = doc["scene"]["surfaces"][k]["mirror"].clone();
+    doc["scene"]["surfaces"][k] = json!({ "splitter": {
+        "name": m["name"], "point_m": m["point_m"], "normal": m["normal"], "reflectance": 0.5 } });
+    let e = run::run_with(&parse(&doc), false).unwrap_err();
+    assert!(
+        e.json_path.starts_with("$.references[0].model.michelson.mirrors["),
+        "{e}"
+    );
+
+    // The Airy film observed about a normal that is not the film's.
+    let mut doc = library("plate_airy_s");
+    doc["probe"]["sweep"]["observe"]["far_field"]["surface_normal"] = json!([0, 1, 1]);
+    let e = run::run_with(&parse(&doc), false).unwrap_err();
+    assert_eq!(
+        e.json_path, "$.probe.sweep.observe.far_field.surface_normal",
+        "{e}"
+    );
+}
