@@ -1,4 +1,4 @@
-//! What a probe measures: one definition per observable (PHYSICS.md §3a).
+//! What a probe measures: one definition per observable (docs/PHYSICS.md §3a).
 //!
 //! - **Field intensity** I = |E|² summed over coherence groups (paper eq. 6): what a screen point
 //!   in the ambient medium records, in units of the source's |E|².
@@ -85,7 +85,13 @@ pub fn check_match(model: &str, returns: Returns, measured: Observable) -> Resul
 /// power fraction crossing a plane of unit normal `normal`:
 /// `(n_out |d_out·N|)/(n_in |d_in·N|)` (B&W §1.5.3: the energy flux through the boundary is
 /// n cos θ |E|² up to a constant common to both waves). It is 1 for a reflected wave.
-pub fn power_factor(n_in: f64, d_in: glam::DVec3, n_out: f64, d_out: glam::DVec3, normal: glam::DVec3) -> f64 {
+pub fn power_factor(
+    n_in: f64,
+    d_in: glam::DVec3,
+    n_out: f64,
+    d_out: glam::DVec3,
+    normal: glam::DVec3,
+) -> f64 {
     let n = normal.normalize();
     (n_out * d_out.normalize().dot(n).abs()) / (n_in * d_in.normalize().dot(n).abs())
 }

@@ -4,9 +4,9 @@
 
 use super::build::{Built, plane_wave};
 use super::spec::{BeamSpec, FarSide, Observer, ReferenceModel};
-use crate::observable::{Observable, Returns, power_factor};
 use crate::analytic::{self, michelson, plate::Pol};
 use crate::fresnel;
+use crate::observable::{Observable, Returns, power_factor};
 use crate::path::Target;
 use crate::scene::SurfaceKind;
 use crate::source::{Channel, Emitter, Source};
@@ -60,7 +60,7 @@ pub fn returns(model: &ReferenceModel) -> Option<Returns> {
     })
 }
 
-/// What a probe point observing through `observer` measures (PHYSICS.md §3a): R or T for the
+/// What a probe point observing through `observer` measures (docs/PHYSICS.md §3a): R or T for the
 /// far field of a plane wave at a surface, |E|² everywhere else.
 pub fn measured(observer: &Observer) -> Observable {
     match observer {
@@ -203,9 +203,7 @@ pub fn value(
             let p = point(target)?;
             let n = ambient_index(built, lambda_m)?;
             Ok(ls[0].0.intensity
-                * analytic::young::exact_line_sources(
-                    ls[0].1, ls[1].1, ls[0].2, p, lambda_m, n, f,
-                ))
+                * analytic::young::exact_line_sources(ls[0].1, ls[1].1, ls[0].2, p, lambda_m, n, f))
         }
         ReferenceModel::YoungParaxial {} => {
             let ls = line_sources(built)?;
@@ -723,8 +721,7 @@ fn michelson_ref(
         .channels()
         .iter()
         .map(|ch: &Channel| {
-            ch.intensity
-                * michelson::intensity(&arms, s, p, lambda_m, n, |d| ch.field_direction(d))
+            ch.intensity * michelson::intensity(&arms, s, p, lambda_m, n, |d| ch.field_direction(d))
         })
         .sum())
 }

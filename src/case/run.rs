@@ -5,9 +5,9 @@ use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
 use super::reference::{self, MetricKind};
 use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
-use crate::observable::{Observable, Returns, check_match};
 use crate::accumulate::Accumulator;
 use crate::fidelity::{self, Fidelity, SceneNeeds};
+use crate::observable::{Observable, Returns, check_match};
 use crate::path::{EnumerationLimits, SolveOptions, Target};
 use crate::source::Emitter;
 use crate::trace::{self, Arrival, TraceSettings};
@@ -340,8 +340,8 @@ fn special_value(
             // the input's (0 or π for linear light: a field at −45° starts at π).
             let src = built.scene.sources.first()?;
             let e_in = src.channels().first()?.field_direction(d_in);
-            let phase_in = Complex64::from(e_in.dot(d_in.cross(s))).arg()
-                - Complex64::from(e_in.dot(s)).arg();
+            let phase_in =
+                Complex64::from(e_in.dot(d_in.cross(s))).arg() - Complex64::from(e_in.dot(s)).arg();
             Some(reference::wrap(dot(p).arg() - dot(s).arg() - phase_in))
         }
         ReferenceModel::LloydVisibility {} => {
@@ -664,7 +664,7 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
 }
 
 /// What the probe measures, after checking that every intensity reference returns the same
-/// observable (PHYSICS.md §3a) and that the observer makes sense: a mismatch is bad input.
+/// observable (docs/PHYSICS.md §3a) and that the observer makes sense: a mismatch is bad input.
 fn check_observables(case: &Case, points: &[ProbePoint]) -> Result<Observable, CaseError> {
     let spec = &case.spec;
     let observer = &points
@@ -732,7 +732,10 @@ fn check_wiring(case: &Case, observer: &Observer) -> Result<(), CaseError> {
                 let path = if key == "mirrors" {
                     format!("$.references[{ri}].model.michelson.mirrors[{k}]")
                 } else {
-                    format!("$.references[{ri}].model.{}.{key}", reference::name(&r.model))
+                    format!(
+                        "$.references[{ri}].model.{}.{key}",
+                        reference::name(&r.model)
+                    )
                 };
                 match kind_of(name) {
                     Some(found) if found == wanted => {}
@@ -750,10 +753,8 @@ fn check_wiring(case: &Case, observer: &Observer) -> Result<(), CaseError> {
                 }
             }
         }
-        if let (
-            ReferenceModel::Airy { film, .. },
-            Observer::FarField { surface_normal, .. },
-        ) = (&r.model, observer)
+        if let (ReferenceModel::Airy { film, .. }, Observer::FarField { surface_normal, .. }) =
+            (&r.model, observer)
             && let Some(crate::case::spec::SurfaceSpec::Plate { normal, .. }) =
                 spec.scene.surfaces.iter().find(|s| s.name() == film)
         {

@@ -123,7 +123,10 @@ fn one_face_transmits_four_n_over_one_plus_n_squared() {
     });
     let r = run::run_with(&parse(&doc), false).unwrap();
     let expected = 4.0 * 1.5 / (2.5f64 * 2.5);
-    for v in [r.metrics[0].analytic[0], r.metrics[0].traced[&Fidelity::Vector][0]] {
+    for v in [
+        r.metrics[0].analytic[0],
+        r.metrics[0].traced[&Fidelity::Vector][0],
+    ] {
         assert!(
             (v - expected).abs() < 1e-14,
             "actual {v:e}, expected {expected:e}"
@@ -179,9 +182,16 @@ fn moved(doc: &Value, q: glam::DQuat, shift: glam::DVec3) -> Value {
             Value::Array(items) => {
                 let nums: Option<Vec<f64>> = items.iter().map(Value::as_f64).collect();
                 match nums {
-                    Some(n) if n.len() == 3 && (key.ends_with("_m") || DIRECTION_KEYS.contains(&key)) => {
+                    Some(n)
+                        if n.len() == 3
+                            && (key.ends_with("_m") || DIRECTION_KEYS.contains(&key)) =>
+                    {
                         let p = glam::DVec3::from_slice(&n);
-                        let r = if key.ends_with("_m") { q * p + shift } else { q * p };
+                        let r = if key.ends_with("_m") {
+                            q * p + shift
+                        } else {
+                            q * p
+                        };
                         *v = json!([r.x, r.y, r.z]);
                     }
                     _ => items.iter_mut().for_each(|x| walk(x, key, q, shift)),
@@ -204,8 +214,16 @@ fn moved(doc: &Value, q: glam::DQuat, shift: glam::DVec3) -> Value {
 #[test]
 fn a_rigid_motion_changes_neither_values_nor_verdicts() {
     let motions = [
-        (glam::DVec3::new(1.0, 2.0, 3.0), 0.7, glam::DVec3::new(0.01, -0.004, 0.002)),
-        (glam::DVec3::new(-2.0, 0.5, 1.0), 2.9, glam::DVec3::new(-0.003, 0.008, 0.005)),
+        (
+            glam::DVec3::new(1.0, 2.0, 3.0),
+            0.7,
+            glam::DVec3::new(0.01, -0.004, 0.002),
+        ),
+        (
+            glam::DVec3::new(-2.0, 0.5, 1.0),
+            2.9,
+            glam::DVec3::new(-0.003, 0.008, 0.005),
+        ),
     ];
     for file in crate::support::library::case_files() {
         let name = file.file_stem().unwrap().to_string_lossy().to_string();
@@ -265,7 +283,8 @@ fn references_must_match_their_scene() {
         "name": m["name"], "point_m": m["point_m"], "normal": m["normal"], "reflectance": 0.5 } });
     let e = run::run_with(&parse(&doc), false).unwrap_err();
     assert!(
-        e.json_path.starts_with("$.references[0].model.michelson.mirrors["),
+        e.json_path
+            .starts_with("$.references[0].model.michelson.mirrors["),
         "{e}"
     );
 
