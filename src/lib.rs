@@ -42,8 +42,8 @@
 //!    a rung of the [`fidelity::Fidelity`] ladder ([`trace::contributions`]); contributions are
 //!    grouped by coherence id, fields summed with their path phasors, groups added in intensity
 //!    (the paper's eqs. 5–6). [`fidelity::auto_select`] names the cheapest exact rung.
-//! 5. **Observables**: |E|² at a point, R or T in the far field, and quantities derived from
-//!    them (retardance, fringe spacing, visibility).
+//! 5. **Observables** ([`observable`]): |E|² at a point, R or T in the far field, and
+//!    quantities derived from them (retardance, fringe spacing, visibility).
 //! 6. **Comparison** ([`analytic`], [`case`], [`check`]): closed forms evaluated independently
 //!    of the tracer, case files that pair a scene with its closed forms and tolerances, and the
 //!    gate `fringe check` with its reports ([`report`]).
