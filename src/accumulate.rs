@@ -1,4 +1,4 @@
-//! The accumulation core (paper §3.6–3.7, eqs. 5–6; PHYSICS.md §3).
+//! The accumulation core (paper §3.6–3.7, eqs. 5–6; docs/PHYSICS.md §3).
 //!
 //! At a screen point, contributions are grouped by coherence id; each group's complex 3D field
 //! vectors are summed with their path phasors, `E_g = Σ_j E_j e^{i 2π c_j}` (c_j: phase in

@@ -1,4 +1,4 @@
-//! One screen point's rays at many wavelengths: the accumulation core (eqs. 5–6, PHYSICS.md §3)
+//! One screen point's rays at many wavelengths: the accumulation core (eqs. 5–6, docs/PHYSICS.md §3)
 //! expanded into beat terms, for spectral renders.
 //!
 //! A ray's phase splits into a part that scales with 1/λ and one that does not:

@@ -1,5 +1,5 @@
 //! Spectral colour: per-wavelength intensities → CIE 1931 XYZ → sRGB, CIELAB and CIEDE2000
-//! colour differences, and Newton's interference colours of a thin film (PHYSICS.md §6).
+//! colour differences, and Newton's interference colours of a thin film (docs/PHYSICS.md §6).
 //!
 //! # Conventions (stated once, used by every function here)
 //!
@@ -30,7 +30,7 @@
 //!   (the default for E, see [`Illuminant::default_adaptation`]), [`Adaptation::None`] does not.
 //!   Every display result ([`SrgbPixel`]) records the illuminant and adaptation it used.
 //! - **Thin film**: time dependence e^{-iωt}; a wave that travelled optical path s carries
-//!   e^{+i 2π s/λ} (PHYSICS.md §1).
+//!   e^{+i 2π s/λ} (docs/PHYSICS.md §1).
 
 use std::sync::OnceLock;
 
@@ -832,7 +832,7 @@ fn validate_film(n_film: f64, thickness_m: f64) -> Result<(), String> {
 
 /// Reflectance R = |r|² (dimensionless) at normal incidence of a non-absorbing film of index
 /// `n_film` and thickness `thickness_m` (metres) in air (n = 1 on both sides), for vacuum
-/// wavelength `lambda_m` (metres). Exact multi-beam (Airy) sum, B&W §7.6.1, PHYSICS.md §5:
+/// wavelength `lambda_m` (metres). Exact multi-beam (Airy) sum, B&W §7.6.1, docs/PHYSICS.md §5:
 ///
 /// ```text
 /// r = (r12 + r23 e^{iβ}) / (1 + r12 r23 e^{iβ}),   β = 4π n d / λ

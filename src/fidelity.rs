@@ -1,4 +1,4 @@
-//! The fidelity ladder (PHYSICS.md §4), cheapest first, and the `auto` choice.
+//! The fidelity ladder (docs/PHYSICS.md §4), cheapest first, and the `auto` choice.
 //!
 //! Every rung starts from the same exact path; they differ in what they keep of the physics:
 //!
@@ -12,6 +12,8 @@
 //! In the scalar rungs I_j is the ray's exact (vector) intensity, so a rung differs from
 //! `vector` only by the phase and polarization physics it drops.
 
+#![warn(missing_docs)]
+
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
@@ -19,14 +21,20 @@ use std::fmt;
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
 #[serde(rename_all = "snake_case")]
 pub enum Fidelity {
+    /// I = Σ I_j: intensities add, no phase (paper Fig. 5).
     Incoherent,
+    /// Scalar amplitudes √I_j with the phase of the optical path only (P10; Fig. 6 left).
     Scalar,
+    /// As `Scalar`, plus π for every reflection from the denser side (Fig. 6 right).
     ScalarJump,
+    /// s and p with |Fresnel|, the π rules P7/P8 and the paper's TIR phases (Fig. 7 right).
     PaperRules,
+    /// Complex Fresnel (P1–P6) in 3D frames, full vector sums: the reference.
     Vector,
 }
 
 impl Fidelity {
+    /// Every rung, cheapest first.
     pub const ALL: [Fidelity; 5] = [
         Fidelity::Incoherent,
         Fidelity::Scalar,
@@ -35,6 +43,7 @@ impl Fidelity {
         Fidelity::Vector,
     ];
 
+    /// The rung's name in case files and on the command line (`scalar_jump`, …).
     pub fn name(self) -> &'static str {
         match self {
             Fidelity::Incoherent => "incoherent",
@@ -45,11 +54,13 @@ impl Fidelity {
         }
     }
 
+    /// The rung named `s` ([`Fidelity::name`]), if any.
     pub fn parse(s: &str) -> Option<Fidelity> {
         Fidelity::ALL.into_iter().find(|f| f.name() == s)
     }
 }
 
+/// Writes [`Fidelity::name`].
 impl fmt::Display for Fidelity {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str(self.name())
@@ -72,41 +83,66 @@ pub struct SceneNeeds {
     pub polarization_state: bool,
 }
 
+/// The `auto` choice: the cheapest rung of the ladder that is exact for a scene, and why.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct AutoChoice {
+    /// The rung chosen.
+    pub level: Fidelity,
+    /// Why this rung is exact for the scene and the cheaper ones are not (one sentence).
+    pub reason: String,
+}
+
+impl AutoChoice {
+    fn new(level: Fidelity, reason: &str) -> AutoChoice {
+        AutoChoice {
+            level,
+            reason: reason.to_string(),
+        }
+    }
+}
+
+/// Writes `level: reason`.
+impl fmt::Display for AutoChoice {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(f, "{}: {}", self.level, self.reason)
+    }
+}
+
 /// `auto`: the cheapest rung that is exact for a scene with these needs, and why.
-pub fn auto_select(needs: &SceneNeeds) -> (Fidelity, String) {
+pub fn auto_select(needs: &SceneNeeds) -> AutoChoice {
     if needs.polarization_state {
         return if needs.tir {
-            (
+            AutoChoice::new(
                 Fidelity::Vector,
-                "a polarization state is measured and light is totally reflected: only complex Fresnel (P5, P6) gets the retardance right".into(),
+                "a polarization state is measured and light is totally reflected: only complex Fresnel (P5, P6) gets the retardance right",
             )
         } else {
-            (
+            AutoChoice::new(
                 Fidelity::PaperRules,
-                "a polarization state is measured: s and p must be carried separately (no TIR, so the paper's rules are exact)".into(),
+                "a polarization state is measured: s and p must be carried separately (no TIR, so the paper's rules are exact)",
             )
         };
     }
     if !needs.interference {
-        return (
+        return AutoChoice::new(
             Fidelity::Incoherent,
-            "no two mutually coherent rays meet at any probe point: intensities add".into(),
+            "no two mutually coherent rays meet at any probe point: intensities add",
         );
     }
     if !needs.interfaces && needs.parallel_fields {
-        return (
+        return AutoChoice::new(
             Fidelity::Scalar,
-            "no reflections or refractions and parallel fields in every coherence group: path phase is the only phase".into(),
+            "no reflections or refractions and parallel fields in every coherence group: path phase is the only phase",
         );
     }
     if !needs.tir {
-        return (
+        return AutoChoice::new(
             Fidelity::PaperRules,
-            "interfaces without total internal reflection: |Fresnel| with the π rules P7/P8 equals complex Fresnel exactly".into(),
+            "interfaces without total internal reflection: |Fresnel| with the π rules P7/P8 equals complex Fresnel exactly",
         );
     }
-    (
+    AutoChoice::new(
         Fidelity::Vector,
-        "total internal reflection: only complex Fresnel (P5, P6) gets the phase right".into(),
+        "total internal reflection: only complex Fresnel (P5, P6) gets the phase right",
     )
 }

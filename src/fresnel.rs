@@ -1,7 +1,7 @@
 //! Fresnel coefficients and ray directions at a plane interface between two
 //! isotropic, lossless media.
 //!
-//! # Conventions (PHYSICS.md §1, fixed once for the whole crate)
+//! # Conventions (docs/PHYSICS.md §1, fixed once for the whole crate)
 //!
 //! * Time dependence `e^{-iωt}`; a wave that travelled optical path `s` carries `e^{+i 2π s/λ0}`.
 //! * At an interface with unit normal `N` (either orientation) and incident direction `d_i`:
@@ -66,7 +66,7 @@ pub fn critical_angle(n1: f64, n2: f64) -> Option<f64> {
     (n1 > n2).then(|| (n2 / n1).asin())
 }
 
-/// Brewster angle θB = atan(n2/n1) in radians (PHYSICS.md §2, paper eq. 9).
+/// Brewster angle θB = atan(n2/n1) in radians (docs/PHYSICS.md §2, paper eq. 9).
 pub fn brewster_angle(n1: f64, n2: f64) -> f64 {
     n2.atan2(n1)
 }
@@ -131,7 +131,7 @@ impl FresnelCoefficients {
     }
 }
 
-/// The paper's rules (PHYSICS.md §2, P7/P8, paper eqs. 8–9, and the paper's TIR phases),
+/// The paper's rules (docs/PHYSICS.md §2, P7/P8, paper eqs. 8–9, and the paper's TIR phases),
 /// expressed in this crate's frame so they can be compared with [`fresnel`] term by term.
 ///
 /// Outside TIR: |r|, |t| from (P1)–(P4), with a π jump on E⊥ when n1 < n2 (P7) and on E∥ when
@@ -221,7 +221,7 @@ pub fn refract(d_i: DVec3, normal: DVec3, n1: f64, n2: f64) -> Option<DVec3> {
     Some((eta * d_i + (eta * cos_i - c2t.sqrt()) * n_o).normalize())
 }
 
-/// The s unit vector of PHYSICS.md §1: `normalize(d_i × N)`, oriented so that it does not
+/// The s unit vector of docs/PHYSICS.md §1: `normalize(d_i × N)`, oriented so that it does not
 /// depend on the orientation of N (`N` is first turned to face against `d_i`). At normal
 /// incidence (|d_i × N| below 1e-12) the plane of incidence is undefined and `fallback`
 /// (projected perpendicular to `d_i`) is used; any choice gives the same 3D fields.

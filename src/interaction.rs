@@ -1,7 +1,7 @@
 //! A ray meets an interface: the reflected and refracted children (paper §3.3–3.5).
 //!
 //! The parent is advanced to the hit point (adding n·L to its optical path), its 3D field is
-//! split into s and p in the frame of PHYSICS.md §1, each component is multiplied by its Fresnel
+//! split into s and p in the frame of docs/PHYSICS.md §1, each component is multiplied by its Fresnel
 //! coefficient, and each child carries the frame (X, Y) = (s, p_child), so (X, Y, dir) stays
 //! right-handed. Children inherit or lose the coherence id according to the surface's
 //! [`CoherenceRules`].
@@ -13,7 +13,7 @@ use glam::DVec3;
 use num_complex::Complex64;
 
 /// Which amplitude coefficients an interaction applies (the two polarized rungs of the
-/// fidelity ladder, PHYSICS.md §4).
+/// fidelity ladder, docs/PHYSICS.md §4).
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum CoefficientModel {
     /// Complex Fresnel (P1)–(P6).
@@ -85,7 +85,7 @@ pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3, current: f6
 /// polarization: the indices, the coefficients of the model and the s vector.
 struct Encounter {
     d_i: DVec3,
-    /// The s unit vector (PHYSICS.md §1), `None` at normal incidence, where each ray's own X
+    /// The s unit vector (docs/PHYSICS.md §1), `None` at normal incidence, where each ray's own X
     /// decides ([`fresnel::s_direction`]).
     s: Option<DVec3>,
     n1: f64,
@@ -136,7 +136,7 @@ impl Encounter {
 /// The parent ray at the hit point, split into s and p, with the coefficients of the model.
 struct Split {
     encounter: Encounter,
-    /// The s unit vector of this ray (PHYSICS.md §1).
+    /// The s unit vector of this ray (docs/PHYSICS.md §1).
     s: DVec3,
     /// The parent's field components along s and p_i.
     a_s: Complex64,

@@ -152,14 +152,16 @@ enum Command {
         #[arg(long, default_value = "golden")]
         golden_dir: PathBuf,
     },
-    /// The speed–accuracy trade: every fidelity level × bounce budget × spectral sample count
-    /// per case, against the case's reference; writes DIR/tradeoff/tradeoff.csv.
+    /// The cost–accuracy trade: every fidelity level × bounce budget × spectral sample count
+    /// per case, against the case's reference; writes DIR/tradeoff/tradeoff.csv. Settings are
+    /// ranked by a deterministic cost count (path events, then the simpler level); a setting
+    /// that cannot be traced is a row with its reason.
     Tradeoff {
         /// Case names or files (none: the whole library).
         cases: Vec<String>,
         #[arg(long, default_value = "reports")]
         out: PathBuf,
-        /// Timing repeats per setting (best time kept).
+        /// Timed runs per setting (min, median and max reported; timings do not rank).
         #[arg(long, default_value_t = 3)]
         repeats: usize,
         #[arg(long, default_value = "cases")]
@@ -292,30 +294,25 @@ fn run_cli() -> ExitCode {
                 }
             };
             let mut all = Vec::new();
-            for case in &loaded {
-                match fringe::tradeoff::measure(case, repeats) {
-                    Ok(rows) => {
-                        outln!("{}", fringe::tradeoff::summary(&case.spec.name, &rows));
-                        let path = out
-                            .join("tradeoff")
-                            .join(format!("{}_pareto.png", case.spec.name));
-                        let written =
-                            fringe::report::tradeoff_plot::pareto_png(&case.spec.name, &rows)
-                                .and_then(|png| {
-                                    fringe::report::write_atomic(&path, &png)
-                                        .map_err(|e| e.to_string())
-                                });
-                        if let Err(e) = written {
-                            eprintln!("error: {}: {e}", path.display());
-                            return ExitCode::from(2);
-                        }
-                        all.extend(rows);
-                    }
-                    Err(e) => {
-                        eprintln!("error: {e}");
-                        return ExitCode::from(2);
-                    }
+            let mut summaries = String::new();
+            for (k, case) in loaded.iter().enumerate() {
+                let name = &case.spec.name;
+                eprintln!("tradeoff [{}/{}] {name}", k + 1, loaded.len());
+                let rows = fringe::tradeoff::measure(case, repeats);
+                let line = fringe::tradeoff::summary(name, &rows);
+                outln!("{line}");
+                summaries.push_str(&line);
+                summaries.push('\n');
+                let path = out.join("tradeoff").join(format!("{name}_pareto.png"));
+                let written =
+                    fringe::report::tradeoff_plot::pareto_png(name, &rows).and_then(|png| {
+                        fringe::report::write_atomic(&path, &png).map_err(|e| e.to_string())
+                    });
+                if let Err(e) = written {
+                    eprintln!("error: {}: {e}", path.display());
+                    return ExitCode::from(2);
                 }
+                all.extend(rows);
             }
             let path = out.join("tradeoff").join("tradeoff.csv");
             if let Err(e) =
@@ -324,6 +321,21 @@ fn run_cli() -> ExitCode {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
+            let path = out.join("tradeoff").join("summary.txt");
+            if let Err(e) = fringe::report::write_atomic(&path, summaries.as_bytes()) {
+                eprintln!("error: {}: cannot write: {e}", path.display());
+                return ExitCode::from(2);
+            }
+            // The report page shows the verdicts and the Pareto plots.
+            if let Err(e) = fringe::report::html::write_index(&out) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            eprintln!(
+                "tradeoff: tradeoff.csv, summary.txt and the Pareto plots in {}, report {}",
+                out.join("tradeoff").display(),
+                out.join("index.html").display()
+            );
             ExitCode::SUCCESS
         }
         Command::Render {

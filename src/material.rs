@@ -3,7 +3,7 @@
 //!
 //! Wavelengths are vacuum wavelengths in metres. The dispersion formulas are empirical fits
 //! with a stated validity range; evaluating outside it is an error, never a silent
-//! extrapolation. Complex (absorbing) indices are out of scope (PHYSICS.md §1) and rejected
+//! extrapolation. Complex (absorbing) indices are out of scope (docs/PHYSICS.md §1) and rejected
 //! where a case file is read.
 
 use serde::{Deserialize, Serialize};

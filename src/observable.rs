@@ -1,4 +1,4 @@
-//! What a probe measures: one definition per observable (PHYSICS.md §3a).
+//! What a probe measures: one definition per observable (docs/PHYSICS.md §3a).
 //!
 //! - **Field intensity** I = |E|² summed over coherence groups (paper eq. 6): what a screen point
 //!   in the ambient medium records, in units of the source's |E|².

@@ -138,7 +138,7 @@ pub struct SolvedPath {
     pub landing_error: f64,
     pub iterations: usize,
     /// Number of reflections from the optically denser side (n1 < n2, or a mirror): the π
-    /// jumps of `scalar_jump` (PHYSICS.md §4).
+    /// jumps of `scalar_jump` (docs/PHYSICS.md §4).
     pub denser_reflections: usize,
     /// Whether any reflection event was total internal reflection.
     pub has_tir: bool,

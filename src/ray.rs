@@ -2,7 +2,7 @@
 //!
 //! The frame (X, Y, dir) is right-handed. The polarization is a Jones vector (J_x, J_y) in that
 //! frame; the complex 3D field amplitude is `E = J_x X + J_y Y` and the field at the ray's end is
-//! `E·e^{+i 2π Op/λ0}` (time dependence e^{-iωt}, PHYSICS.md §1). Fresnel phases live in the
+//! `E·e^{+i 2π Op/λ0}` (time dependence e^{-iωt}, docs/PHYSICS.md §1). Fresnel phases live in the
 //! Jones vector; path phase lives in the optical path `Op = Σ n_i L_i` (metres, f64), so that
 //! path *differences* can be formed before any phase is taken. Intensity = |J_x|² + |J_y|² =
 //! trace of the coherence matrix.

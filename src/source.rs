@@ -2,7 +2,7 @@
 //!
 //! A source emits *polarization channels*: a linearly polarized source one, an unpolarized
 //! source two orthogonal linear channels of half the intensity each, with different coherence
-//! ids (they are mutually incoherent, PHYSICS.md §3). Sources that share a `coherence_group`
+//! ids (they are mutually incoherent, docs/PHYSICS.md §3). Sources that share a `coherence_group`
 //! (e.g. the two slits of Young's experiment, lit by one point) are mutually coherent.
 
 use glam::DVec3;

@@ -10,7 +10,7 @@
 //!
 //! * **incidence**, **critical angle**, **indices**: a plane wave on one unbounded interface,
 //!   observed in the far field of the reflection. The amplitude r = (E_r·e_r)/(E_i·e_i) is read
-//!   from the traced 3D field in the s/p frame of PHYSICS.md §1 (e = s, or p_i = d_i × s and
+//!   from the traced 3D field in the s/p frame of docs/PHYSICS.md §1 (e = s, or p_i = d_i × s and
 //!   p_r = d_r × s). Closed forms are *not* the cosine forms (P1)–(P4) the tracer evaluates:
 //!   the sine and tangent forms −sin(θi−θt)/sin(θi+θt), tan(θi−θt)/tan(θi+θt) where they are well
 //!   conditioned, first-order expansions at Brewster's angle and for n2 − n1 = 1e-12, and the
@@ -328,7 +328,7 @@ pub fn path_points(paths_m: &[f64]) -> Vec<PathPoint> {
         .collect()
 }
 
-/// s or p input, as a source polarization angle about the reference Y (PHYSICS.md §1: for the
+/// s or p input, as a source polarization angle about the reference Y (docs/PHYSICS.md §1: for the
 /// plane of incidence xz, s ∥ Y and p = d × s).
 fn pol_angle(pol: Pol) -> f64 {
     match pol {
@@ -356,7 +356,7 @@ fn plane_wave(theta: f64, angle_rad: f64) -> Source {
 
 /// The traced reflection amplitude r_s or r_p of one unbounded interface n1 | n2 (the plane
 /// z = 0, n1 above) for a plane wave at angle θ, read from the traced 3D field in the frame of
-/// PHYSICS.md §1. NaN if the tracer finds no reflected ray.
+/// docs/PHYSICS.md §1. NaN if the tracer finds no reflected ray.
 fn traced_r(n1: f64, n2: f64, theta: f64, pol: Pol) -> Complex64 {
     let nan = Complex64::new(f64::NAN, f64::NAN);
     let mut scene = Scene::new(Medium::constant("n1", n1));
@@ -591,7 +591,7 @@ fn critical_rows(rows: &mut Vec<StabilityRow>) {
         Some(1e-3),
     ));
     // Total internal reflection: |r| = 1 and the retardance |Δ| = |arg r_p − arg r_s| from
-    // tan(|Δ|/2) = cos θ·sqrt(sin²θ − n21²)/sin²θ (PHYSICS.md §1).
+    // tan(|Δ|/2) = cos θ·sqrt(sin²θ − n21²)/sin²θ (docs/PHYSICS.md §1).
     let retardance = |theta: f64| {
         let s2 = theta.sin().powi(2);
         let root = ((theta - tc).sin() * (theta + tc).sin()).sqrt();

@@ -1,7 +1,7 @@
-//! Temporal coherence (PHYSICS.md §3): visibility of two-beam fringes against the optical path
+//! Temporal coherence (docs/PHYSICS.md §3): visibility of two-beam fringes against the optical path
 //! difference Δs, under the paper's rule (P9) and for a Gaussian spectrum.
 
-/// |γ(Δs)| for a spectrum Gaussian in wavenumber with FWHM Δλ around λ0 (PHYSICS.md §3):
+/// |γ(Δs)| for a spectrum Gaussian in wavenumber with FWHM Δλ around λ0 (docs/PHYSICS.md §3):
 /// exp(−(π Δs Δλ/λ0²)²/(4 ln 2)).
 pub fn gaussian_visibility(delta_s_m: f64, lambda0_m: f64, fwhm_m: f64) -> f64 {
     let x = std::f64::consts::PI * delta_s_m * fwhm_m / (lambda0_m * lambda0_m);

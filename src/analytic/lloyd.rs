@@ -1,4 +1,4 @@
-//! Lloyd's mirror (PHYSICS.md §5): a line source parallel to a dielectric mirror, polarized
+//! Lloyd's mirror (docs/PHYSICS.md §5): a line source parallel to a dielectric mirror, polarized
 //! along its axis (pure s at every reflection), interfering with its reflection. With (P1)
 //! the reflected wave is r_s(θ) < 0 times the image source's wave, so the fringe at the mirror
 //! plane is dark as θ → 90°; visibility V = 2|r_s|/(1 + |r_s|²).

@@ -1,5 +1,5 @@
 //! Closed-form references, one file per family. Each function cites the equation it evaluates
-//! (PHYSICS.md numbering, the paper, or Born & Wolf). They share only the Fresnel kernels of
+//! (docs/PHYSICS.md numbering, the paper, or Born & Wolf). They share only the Fresnel kernels of
 //! [`crate::fresnel`] (themselves pinned by tests against independently derived values); all
 //! geometry (distances, angles, lateral offsets) is solved here independently of the tracer's
 //! path solver.
@@ -15,7 +15,7 @@ pub mod young;
 
 use num_complex::Complex64;
 
-/// Phasor e^{i 2π s/λ} of an optical path s (m) at vacuum wavelength λ (m) (PHYSICS.md §1).
+/// Phasor e^{i 2π s/λ} of an optical path s (m) at vacuum wavelength λ (m) (docs/PHYSICS.md §1).
 pub fn path_phasor(s_m: f64, lambda_m: f64) -> Complex64 {
     crate::accumulate::phasor_from_cycles(s_m / lambda_m)
 }

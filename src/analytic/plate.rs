@@ -1,4 +1,4 @@
-//! Plane-parallel plates and films: the Airy multi-beam sum (B&W §7.6.1, §1.6.4; PHYSICS.md §5
+//! Plane-parallel plates and films: the Airy multi-beam sum (B&W §7.6.1, §1.6.4; docs/PHYSICS.md §5
 //! "Plate / film, multi-beam (Airy)"), its truncation, and the two-beam reflection of a point
 //! source (paper §4.2, Fig. 4 left) with the geometry solved here in one dimension.
 
@@ -72,7 +72,7 @@ impl Film {
         }
     }
 
-    /// Airy reflection amplitude r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}) (PHYSICS.md §5).
+    /// Airy reflection amplitude r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}) (docs/PHYSICS.md §5).
     pub fn r(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
         let a = self.terms(cos_theta_1, lambda_m, pol);
         let e = Complex64::from_polar(1.0, a.beta);

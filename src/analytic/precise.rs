@@ -38,7 +38,7 @@ pub fn distance(a: DVec3, b: DVec3) -> TwoFloat {
 }
 
 /// The phasor e^{i 2π s/λ} of an optical path `s` (m) in double-double at vacuum wavelength
-/// `lambda_m` (PHYSICS.md §1): the whole cycles are removed in double-double, so the rounded
+/// `lambda_m` (docs/PHYSICS.md §1): the whole cycles are removed in double-double, so the rounded
 /// fraction keeps its digits for paths of any length.
 pub fn path_phasor(s_m: TwoFloat, lambda_m: f64) -> Complex64 {
     let cycles = s_m / lambda_m;

@@ -1,4 +1,4 @@
-//! Total internal reflection: the Fresnel rhomb (PHYSICS.md §5) and a TIR beam interfering with
+//! Total internal reflection: the Fresnel rhomb (docs/PHYSICS.md §5) and a TIR beam interfering with
 //! a beam of another path.
 //!
 //! Under TIR |r_s| = |r_p| = 1 with arg r_s (P5) and arg r_p (P6); the relative phase

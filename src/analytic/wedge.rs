@@ -1,4 +1,4 @@
-//! The Fizeau wedge (PHYSICS.md §5 "Wedge"): a plane wave at normal incidence on a wedge of
+//! The Fizeau wedge (docs/PHYSICS.md §5 "Wedge"): a plane wave at normal incidence on a wedge of
 //! index n and angle α. The beam reflected at the top face goes straight back; the beam
 //! reflected at the tilted bottom face leaves at ψ, sin ψ = n sin 2α, so on any screen plane
 //! parallel to the top face the fringe spacing is exactly λ/(n sin 2α) ≈ λ/(2nα).

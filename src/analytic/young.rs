@@ -1,4 +1,4 @@
-//! Young's two-slit experiment (paper §4.1, eq. 4; PHYSICS.md §5 "Young").
+//! Young's two-slit experiment (paper §4.1, eq. 4; docs/PHYSICS.md §5 "Young").
 //!
 //! Two coherent line sources (slits) parallel to the z axis at (0, ±d/2); screen at x = l.
 //! The exact distances are the perpendicular distances to the slit axes,

@@ -1,5 +1,5 @@
 //! The case library: file format ([`spec`]), loading and validation ([`load`]), building tracer
-//! objects ([`build`]), closed-form references ([`reference`]) and running a case ([`run`]).
+//! objects ([`build`]), closed-form references ([`reference`](mod@reference)) and running a case ([`run`]).
 pub mod build;
 pub mod detection;
 pub mod load;

@@ -60,7 +60,7 @@ pub fn returns(model: &ReferenceModel) -> Option<Returns> {
     })
 }
 
-/// What a probe point observing through `observer` measures (PHYSICS.md §3a): R or T for the
+/// What a probe point observing through `observer` measures (docs/PHYSICS.md §3a): R or T for the
 /// far field of a plane wave at a surface, |E|² everywhere else.
 pub fn measured(observer: &Observer) -> Observable {
     match observer {
@@ -184,7 +184,7 @@ fn point(target: &Target) -> Result<DVec3, String> {
 }
 
 /// The reference's value at one probe point and wavelength (Intensity, Retardance and
-/// Visibility kinds; spacing references are evaluated by [`spacing`]).
+/// Visibility kinds; spacing references are evaluated in `run`).
 pub fn value(
     model: &ReferenceModel,
     built: &Built,

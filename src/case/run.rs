@@ -115,7 +115,7 @@ pub struct CaseResult {
     pub formula: String,
     pub levels: Vec<Fidelity>,
     pub metrics: Vec<MetricResult>,
-    pub auto: (Fidelity, String),
+    pub auto: fidelity::AutoChoice,
     pub trace_seconds: f64,
     pub level_seconds: BTreeMap<Fidelity, f64>,
     pub convergence: Vec<ConvergenceRow>,
@@ -800,7 +800,7 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
 }
 
 /// What the probe measures, after checking that every intensity reference returns the same
-/// observable (PHYSICS.md §3a) and that the observer makes sense: a mismatch is bad input.
+/// observable (docs/PHYSICS.md §3a) and that the observer makes sense: a mismatch is bad input.
 fn check_observables(case: &Case, points: &[ProbePoint]) -> Result<Observable, CaseError> {
     let spec = &case.spec;
     let observer = &points

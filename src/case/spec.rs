@@ -461,7 +461,7 @@ pub enum ReferenceModel {
     /// Mutually incoherent point sources: Σ I_k/r_k² (spreading on) or Σ I_k (off).
     IncoherentSum {},
     /// Two-beam plate reflection at normal incidence with a Gaussian spectrum:
-    /// I1 + I2 + 2√(I1 I2)|γ(Δs)| cos(k0 Δs + φ) (PHYSICS.md §3).
+    /// I1 + I2 + 2√(I1 I2)|γ(Δs)| cos(k0 Δs + φ) (docs/PHYSICS.md §3).
     CoherenceGaussian {
         plate: String,
         /// Bandwidth (FWHM, nm) when the case's light is monochromatic (to measure another
@@ -504,7 +504,7 @@ pub struct TraceSpec {
     /// Geometric spreading (1/r² for point sources); off for the paper's figures.
     #[serde(default)]
     pub spreading: bool,
-    /// Regression tolerance against golden/<case>.csv (relative to the profile scale).
+    /// Regression tolerance against `golden/<case>.csv` (relative to the profile scale).
     #[serde(default = "golden_tol")]
     pub golden_tolerance: f64,
 }

@@ -370,6 +370,7 @@ pub fn index_html(out: &Path) -> Result<String, String> {
     }
     super::renderers::models_section(&mut h, out);
     super::renderers::grade_section(&mut h, out);
+    h.push_str(&super::tradeoff_plot::report_section(out).unwrap_or_default());
     h.push_str("</body></html>\n");
     Ok(h)
 }

@@ -228,7 +228,7 @@ pub fn rows(r: &CaseResult) -> Vec<Row> {
     }
     // The auto choice must be exact for the primary reference.
     if let Some(primary) = r.metrics.first() {
-        let (level, why) = &r.auto;
+        let (level, why) = (&r.auto.level, &r.auto.reason);
         let tol = primary.tolerances.get(&Fidelity::Vector).copied();
         if let (Some(st), Some(t)) = (primary.stats(*level), tol) {
             out.push(Row {

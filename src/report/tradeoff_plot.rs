@@ -1,11 +1,14 @@
-//! Plots of the trade-off reports: the Pareto plot of one case (time vs error, log–log) and the
+//! Plots of the trade-off reports: the Pareto plot of one case (cost count vs error, log–log) and the
 //! renderer-mode study (error vs rays per pixel per estimator and pixel size).
+
+#![warn(missing_docs)]
 
 use super::plot::{err, level_colour, render_png as png};
 use crate::fidelity::Fidelity;
 use crate::forward_study::StudyRow;
-use crate::tradeoff::{TradeoffRow, pareto};
+use crate::tradeoff::{Measurement, TradeoffRow, pareto};
 use plotters::prelude::*;
+use std::path::Path;
 
 /// Deviations below this are drawn on the floor of the log axis.
 const FLOOR: f64 = 1e-17;
@@ -23,19 +26,31 @@ fn log_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
     }
 }
 
-/// Time vs max deviation of every setting of one case; the Pareto front joined, the tolerance
-/// dashed.
+/// Cost (path events traced, the deterministic cost count of [`crate::tradeoff`]) against the
+/// max deviation from the primary reference of every traced setting of one case; the Pareto
+/// front joined, the tolerance dashed. Rungs sharing a cost count are drawn side by side (a
+/// small horizontal offset per rung, cheapest rung leftmost). Settings that could not be traced
+/// are not drawn (they are rows of `tradeoff.csv` with their reason).
 pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
+    // Rungs at one cost count are spread over ±8% of it so that they do not hide each other.
+    let x_of = |r: &TradeoffRow, m: &Measurement| {
+        m.path_events.max(1.0) * (1.0 + 0.04 * (r.fidelity as usize as f64 - 2.0))
+    };
+    let traced: Vec<(&TradeoffRow, &Measurement)> = rows
+        .iter()
+        .filter_map(|r| r.measurement().map(|m| (r, m)))
+        .collect();
     png((900, 560), |root| {
-        let (x0, x1) = log_range(rows.iter().map(|r| r.seconds));
+        let (x0, x1) = log_range(traced.iter().map(|(r, m)| x_of(r, m)));
         let (y0, y1) = log_range(
-            rows.iter()
-                .map(|r| r.max_abs_dev.max(FLOOR))
+            traced
+                .iter()
+                .map(|(_, m)| m.max_abs_dev.max(FLOOR))
                 .chain(rows.iter().map(|r| r.tolerance)),
         );
         let mut chart = ChartBuilder::on(root)
             .caption(
-                format!("{case} — time vs error of every setting"),
+                format!("{case}: cost vs error of every setting"),
                 ("sans-serif", 20),
             )
             .margin(10)
@@ -45,8 +60,8 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
             .map_err(err)?;
         chart
             .configure_mesh()
-            .x_desc("wall time (s)")
-            .y_desc("max |dev| vs reference")
+            .x_desc("path events traced (cost count; rungs offset)")
+            .y_desc("max |dev| vs reference (relative)")
             .x_label_formatter(&|v| format!("{v:.0e}"))
             .y_label_formatter(&|v| format!("{v:.0e}"))
             .label_style(("sans-serif", 13))
@@ -54,10 +69,10 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
             .map_err(err)?;
         for level in Fidelity::ALL {
             let c = level_colour(level);
-            let pts: Vec<(f64, f64)> = rows
+            let pts: Vec<(f64, f64)> = traced
                 .iter()
-                .filter(|r| r.fidelity == level)
-                .map(|r| (r.seconds, r.max_abs_dev.max(FLOOR)))
+                .filter(|(r, _)| r.fidelity == level)
+                .map(|(r, m)| (x_of(r, m), m.max_abs_dev.max(FLOOR)))
                 .collect();
             chart
                 .draw_series(pts.iter().map(|p| Circle::new(*p, 5, c.filled())))
@@ -70,7 +85,10 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
             .iter()
             .zip(&flags)
             .filter(|(_, f)| **f)
-            .map(|(r, _)| (r.seconds, r.max_abs_dev.max(FLOOR)))
+            .filter_map(|(r, _)| {
+                r.measurement()
+                    .map(|m| (x_of(r, m), m.max_abs_dev.max(FLOOR)))
+            })
             .collect();
         front.sort_by(|a, b| a.0.total_cmp(&b.0));
         chart
@@ -184,4 +202,59 @@ pub fn forward_png(rows: &[StudyRow]) -> Result<Vec<u8>, String> {
         }
         Ok(())
     })
+}
+
+/// The `fringe tradeoff` and `fringe forward` results for the report page, from the files those
+/// commands wrote under `out` (`tradeoff/summary.txt`, `tradeoff/<case>_pareto.png`,
+/// `forward/forward.png`); `None` when neither command has run into `out`.
+pub fn report_section(out: &Path) -> Option<String> {
+    use super::html::{base64, escape};
+    use std::fmt::Write as _;
+    let img = |path: &Path, alt: &str| -> Option<String> {
+        let bytes = std::fs::read(path).ok()?;
+        Some(format!(
+            "<img class=\"plot\" alt=\"{}\" src=\"data:image/png;base64,{}\">",
+            escape(alt),
+            base64(&bytes)
+        ))
+    };
+    let mut h = String::new();
+    if let Ok(text) = std::fs::read_to_string(out.join("tradeoff").join("summary.txt")) {
+        h.push_str("<h2 id=\"tradeoff\">Cost and accuracy of every setting (<code>fringe tradeoff</code>)</h2>\n");
+        h.push_str(
+            "<p>Every fidelity level × internal-reflection budget × spectral sample count of a \
+             case against its primary reference. The cheapest setting within the case's \
+             tolerance is ranked by the number of path events traced (deterministic), then by \
+             the simpler level; wall times (min, median, max of repeated runs) are information \
+             only. Settings that cannot be traced are rows of \
+             <a href=\"tradeoff/tradeoff.csv\">tradeoff.csv</a> with their reason.</p>\n<ul>\n",
+        );
+        for line in text.lines().filter(|l| !l.trim().is_empty()) {
+            let _ = writeln!(h, "<li>{}</li>", escape(line));
+        }
+        h.push_str("</ul>\n");
+        let mut plots: Vec<_> = std::fs::read_dir(out.join("tradeoff"))
+            .map(|d| {
+                d.filter_map(|e| e.ok().map(|e| e.path()))
+                    .filter(|p| p.to_string_lossy().ends_with("_pareto.png"))
+                    .collect()
+            })
+            .unwrap_or_default();
+        plots.sort();
+        for p in plots {
+            let name = p.file_name().map(|n| n.to_string_lossy().into_owned());
+            if let Some(tag) = img(&p, name.as_deref().unwrap_or("Pareto plot")) {
+                h.push_str(&tag);
+            }
+        }
+    }
+    if let Some(tag) = img(&out.join("forward").join("forward.png"), "forward.png") {
+        h.push_str("<h2 id=\"forward\">Renderer mode (<code>fringe forward</code>)</h2>\n");
+        h.push_str(
+            "<p>Forward ray fans into pixels: each estimator's error against the exact tracer \
+             over rays per pixel and pixel size (<a href=\"forward/forward.csv\">forward.csv</a>).</p>\n",
+        );
+        h.push_str(&tag);
+    }
+    (!h.is_empty()).then_some(h)
 }

@@ -1,4 +1,4 @@
-//! Tests of `fringe::accumulate` (paper eqs. 4–6, PHYSICS.md §3). Every check asserts and prints
+//! Tests of `fringe::accumulate` (paper eqs. 4–6, docs/PHYSICS.md §3). Every check asserts and prints
 //! actual, expected and error; each expected value says how it was derived, never from the code
 //! under test.
 

@@ -123,7 +123,7 @@ fn every_library_case_passes() {
         // `auto` must name a level that is exact for the scene: its row (primary metric) passes,
         // and every metric defined at that level meets its `vector` tolerance there (a
         // retardance, for instance, is undefined at the scalar levels, so the row can be absent).
-        let (auto, why) = &result.auto;
+        let (auto, why) = (&result.auto.level, &result.auto.reason);
         if let Some(a) = rows.iter().find(|r| r.fidelity.starts_with("auto=")) {
             if a.pass != Some(true) {
                 failures.push(format!(

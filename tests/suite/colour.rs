@@ -246,7 +246,7 @@ fn perfect_reflector_under_d65_is_srgb_white() {
 fn perfect_reflector_under_e_without_adaptation_is_pinkish() {
     // The CIE 1931 functions have equal areas, so under E the white is XYZ = (1, 1, 1); the IEC
     // matrix row sums give linear sRGB (3.2406 − 1.5372 − 0.4986, −0.9689 + 1.8758 + 0.0415,
-    // 0.0557 − 0.2040 + 1.0570) = (1.2048, 0.9484, 0.9087) (PHYSICS.md §6: ≈ 1.205, 0.948, 0.909).
+    // 0.0557 − 0.2040 + 1.0570) = (1.2048, 0.9484, 0.9087) (docs/PHYSICS.md §6: ≈ 1.205, 0.948, 0.909).
     let integrator = SpectralIntegrator::new(&WavelengthGrid::cie_1nm(), Illuminant::E).unwrap();
     let xyz = integrator.xyz(&vec![1.0; integrator.len()]);
     assert_close3("XYZ of E white", xyz, [1.0; 3], 1e-3);

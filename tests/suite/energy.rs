@@ -1,4 +1,4 @@
-//! Energy conservation of the traced multi-beam sums on a lossless plate (PHYSICS.md §5
+//! Energy conservation of the traced multi-beam sums on a lossless plate (docs/PHYSICS.md §5
 //! "Energy", "Plate / film, multi-beam (Airy)").
 //!
 //! A plane wave (unit intensity) meets a plate of index n2 = 1.5, thickness 1 µm, between air
@@ -206,7 +206,7 @@ impl Airy {
         let t: Complex64 = (0..=mt).map(|k| self.trans_order(k)).sum();
         (r.norm_sqr(), self.eta * t.norm_sqr())
     }
-    /// The closed-form Airy R and T (PHYSICS.md §5).
+    /// The closed-form Airy R and T (docs/PHYSICS.md §5).
     fn closed(&self) -> (f64, f64) {
         let e = Complex64::from_polar(1.0, self.beta);
         let den = Complex64::from(1.0) - self.rho() * e;

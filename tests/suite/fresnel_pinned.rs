@@ -1,5 +1,5 @@
 //! Pinned Fresnel values at named angles. Every expected number is derived independently of the
-//! code, and the comment at each says where it comes from: by hand from P1–P4 (PHYSICS.md §1),
+//! code, and the comment at each says where it comes from: by hand from P1–P4 (docs/PHYSICS.md §1),
 //! or from a one-off high-precision evaluation with Python mpmath (50 digits) of the B&W formulas:
 //!
 //! ```text
@@ -189,7 +189,7 @@ fn grazing_air_to_glass() {
 
 /// Fresnel rhomb, n = 1.51 → air: Δ = arg r_p − arg r_s under TIR. Expected from mpmath (above):
 /// 54.6°: Δ = −0.78560915581672415275 rad; 48.6°: Δ = −0.78506953147636609660 rad; both
-/// within 0.02° of −45° (PHYSICS.md §1), and arg r_s, arg r_p individually (P5, P6 signs).
+/// within 0.02° of −45° (docs/PHYSICS.md §1), and arg r_s, arg r_p individually (P5, P6 signs).
 #[test]
 fn fresnel_rhomb_phase_difference() {
     for (deg, arg_s, arg_p, delta) in [

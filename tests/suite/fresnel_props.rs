@@ -1,4 +1,4 @@
-//! Property tests of the Fresnel kernels (PHYSICS.md §1, P1–P8) for indices in [1, 3] and every
+//! Property tests of the Fresnel kernels (docs/PHYSICS.md §1, P1–P8) for indices in [1, 3] and every
 //! angle of incidence in [0, π/2] (ends included).
 //!
 //! Expected values are identities of the exact physics (energy conservation, Stokes relations,
@@ -53,7 +53,7 @@ fn check_close(
 proptest! {
     #![proptest_config(config(256))]
 
-    /// R + T = 1 for s and p outside TIR; R = 1, T = 0 under TIR (PHYSICS.md §1 "Power").
+    /// R + T = 1 for s and p outside TIR; R = 1, T = 0 under TIR (docs/PHYSICS.md §1 "Power").
     /// Expected: 1 (energy conservation at a lossless interface). T is also recomputed here
     /// from t and an independent cos θt, so a wrong `power()` and a wrong `t` are both caught.
     #[test]
@@ -91,7 +91,7 @@ proptest! {
         }
     }
 
-    /// Stokes relations (PHYSICS.md §1): r(2→1, θt) = −r(1→2, θi) and t12·t21 − r12·r21 = 1,
+    /// Stokes relations (docs/PHYSICS.md §1): r(2→1, θt) = −r(1→2, θi) and t12·t21 − r12·r21 = 1,
     /// for s and p, outside TIR. Expected values are the identities themselves (B&W §1.6.4).
     #[test]
     fn stokes_relations((n1, n2) in index_pair(), theta in angle()) {
@@ -241,7 +241,7 @@ proptest! {
     }
 
     /// `paper_rules` (|r|, |t| with P7/P8) equals complex Fresnel (P1–P4) wherever there is no
-    /// TIR (PHYSICS.md §2: "prove that with a test"). Tolerance 1e-12 × max(1, |coefficient|):
+    /// TIR (docs/PHYSICS.md §2: "prove that with a test"). Tolerance 1e-12 × max(1, |coefficient|):
     /// at θB r_p crosses zero and the P8 angle comparison may disagree with the sign of a
     /// 1e-16-sized r_p, which an absolute floor absorbs.
     #[test]

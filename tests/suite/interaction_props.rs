@@ -1,4 +1,4 @@
-//! Property tests of `interaction::interact` (PHYSICS.md §1 frames, P1–P6 applied in 3D, §3
+//! Property tests of `interaction::interact` (docs/PHYSICS.md §1 frames, P1–P6 applied in 3D, §3
 //! coherence rules, the phase ledger).
 //!
 //! Expected values: the 3D children fields are rebuilt here from scratch — s = normalize(d_i × N),
@@ -242,7 +242,7 @@ proptest! {
 
     /// Flipping the orientation of the normal (and swapping n_front/n_back with it) describes the
     /// same physical interface: every child's direction and 3D field must be unchanged
-    /// (PHYSICS.md §1: "Flipping N flips s and every p: results are unchanged").
+    /// (docs/PHYSICS.md §1: "Flipping N flips s and every p: results are unchanged").
     #[test]
     fn normal_orientation_does_not_matter(
         (n1, n2) in index_pair(), inc in incidence(), psi in 0.0..TAU,

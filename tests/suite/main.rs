@@ -31,6 +31,7 @@ mod render;
 mod renderer_models;
 mod stability;
 mod stability_report;
+mod tradeoff;
 mod trail;
 mod truth;
 mod young_two_point;

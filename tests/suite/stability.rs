@@ -166,7 +166,7 @@ fn path_differences_from_1_nm_to_10_m() {
     }
 }
 
-/// Films from 0.1 nm to 1 mm against the Airy sum (PHYSICS.md §5, evaluated by
+/// Films from 0.1 nm to 1 mm against the Airy sum (docs/PHYSICS.md §5, evaluated by
 /// analytic::plate::Film from the Fresnel coefficients alone).
 #[test]
 fn films_from_a_tenth_of_a_nanometre_to_a_millimetre() {

@@ -1,4 +1,4 @@
-//! Young's two-point interference (PHYSICS.md §3 P10, §5 "Young", "Coherence").
+//! Young's two-point interference (docs/PHYSICS.md §3 P10, §5 "Young", "Coherence").
 //!
 //! Two point sources S1 = (−h, 0, 0), S2 = (+h, 0, 0) in vacuum, screen points P = (x, 0, L) on a
 //! line: sources and screen points lie in the plane y = 0, and both sources are polarized along
@@ -162,8 +162,8 @@ fn spreading_weights_the_fringes() {
 /// (P5/P6) and the path phase e^{+i2πs/λ} must use the same time convention, so the fringes are
 /// I = |E1 + E2 e^{iδ}|², δ = 2π n (|P − S'| − |P − S|)/λ (image method, S' the mirror image),
 /// with E2 built here from my own B&W coefficients (`common::ref_fresnel`) in the frame of
-/// PHYSICS.md §1: E2 = r_s (E0·s) s + r_p (E0·p_i) p_r. For s light (field ∥ y) this is
-/// 2 + 2 cos(δ + arg r_s). The paper's rule (conjugate TIR phase, PHYSICS.md §1) must give
+/// docs/PHYSICS.md §1: E2 = r_s (E0·s) s + r_p (E0·p_i) p_r. For s light (field ∥ y) this is
+/// 2 + 2 cos(δ + arg r_s). The paper's rule (conjugate TIR phase, docs/PHYSICS.md §1) must give
 /// 2 + 2 cos(δ − arg r_s) instead: the fringe shift the harness is meant to show.
 #[test]
 fn tir_two_beam_fringes_use_one_time_convention() {

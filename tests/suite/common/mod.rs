@@ -1,7 +1,7 @@
 //! Shared proptest strategies and independent reference helpers for the integration tests.
 //!
 //! Nothing here calls into `fringe`'s physics: the reference Fresnel formulas below are written
-//! out again from Born & Wolf §1.5 (the cosine forms, P1–P4 of PHYSICS.md) so that the tests
+//! out again from Born & Wolf §1.5 (the cosine forms, P1–P4 of docs/PHYSICS.md) so that the tests
 //! compare the crate against an independent evaluation, never against itself.
 #![allow(dead_code)]
 
@@ -115,7 +115,7 @@ pub fn complex_amplitude() -> impl Strategy<Value = Complex64> {
 }
 
 /// Reference Fresnel coefficients written out independently from B&W §1.5 (P1–P4, cosine
-/// forms), with cos θt = sqrt(1 − (n1/n2)² sin²θi), or +i·sqrt(..) under TIR (PHYSICS.md §1).
+/// forms), with cos θt = sqrt(1 − (n1/n2)² sin²θi), or +i·sqrt(..) under TIR (docs/PHYSICS.md §1).
 #[derive(Clone, Copy, Debug)]
 pub struct RefFresnel {
     pub r_s: Complex64,
