@@ -418,12 +418,24 @@ fn wedge(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     // Where the wedge has positive thickness: |x| < t0/tan α.
     let reach = (0.9 * t0_um * 1e-6 / tan_a).min(REACH_M);
     let fringe = nm * 1e-9 / (2.0 * n * alpha_deg.to_radians().sin());
-    let centre = reach * d.real(-1.0, 1.0);
+    let centre = reach * d.real(-0.5, 0.5);
     let half = (fringe * d.log(1e-2, 10.0))
         .min(reach - centre.abs())
         .max(1e-12);
     let h_src = d.log(1e-6, 1.0);
-    let h_obs = d.log(1e-6, 1.0).min(h_src * 0.999);
+    // The beam reflected by the bottom face leaves the top face at θe (sin θe = n sin 2α / n0)
+    // and walks off sideways by h tan θe before reaching the probe at height h: keep its
+    // starting point on the wedge (where the thickness is positive).
+    let sin_exit = n * (2.0 * alpha_deg.to_radians()).sin() / n0;
+    if sin_exit >= 1.0 {
+        return Err("wedge: the beam reflected by the bottom face is totally reflected at the top face (n sin 2α ≥ n0), no second beam leaves the wedge".into());
+    }
+    let tan_exit = sin_exit / (1.0 - sin_exit * sin_exit).sqrt();
+    let room = reach - centre.abs() - half;
+    let h_obs = d.log(1e-6, 1.0).min(0.5 * room / tan_exit);
+    if h_obs <= 0.0 {
+        return Err("wedge: no probe height keeps the second beam on the wedge".into());
+    }
     let angle = if d.flag(0.5) { 180.0 } else { 0.0 };
     let mut media = json!({"ambient": constant(n0), "glass": constant(n)});
     if on_substrate {
@@ -686,9 +698,18 @@ fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Val
     // Resolution the trapezoid sum needs (see the doc comment).
     let sigma_k = std::f64::consts::TAU * fwhm / (centre * centre) / (8.0 * 2f64.ln()).sqrt();
     let ds_nm = 2.0 * n2 * t1_nm;
+    // The sampled band k0 ± sigmas·σ_k must stay within [200, 2500] nm (the loader's rule):
+    // the most standard deviations this spectrum allows.
+    let k0 = std::f64::consts::TAU / centre;
+    let sigmas_max = ((k0 - std::f64::consts::TAU / 2500.0) / sigma_k)
+        .min((std::f64::consts::TAU / 200.0 - k0) / sigma_k)
+        .min(12.0);
+    if sigmas_max < 1.0 {
+        return Err("coherence_gaussian: this bandwidth does not fit one standard deviation inside 200-2500 nm around this centre".into());
+    }
     let (sigmas, samples) = match d.choose(2) {
         0 => {
-            let sigmas = d.real(7.0, 12.0);
+            let sigmas = d.real(7.0, 12.0).min(sigmas_max);
             let need = sigmas * (7.0 + ds_nm * sigma_k) / std::f64::consts::PI + 1.0;
             if need > 4096.0 {
                 return Err("coherence_gaussian: resolving this path difference within the tolerance needs more than the 4096 spectral samples allowed".into());
@@ -697,7 +718,7 @@ fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Val
             (sigmas, n as usize)
         }
         _ => {
-            let sigmas = d.real(1.0, 12.0);
+            let sigmas = d.real(1.0, 12.0).min(sigmas_max);
             let n = d.log(2.0, 4096.0).round() as usize;
             let need = sigmas * (7.0 + ds_nm * sigma_k) / std::f64::consts::PI + 1.0;
             if (n as f64) < need || sigmas < 7.0 {

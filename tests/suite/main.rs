@@ -18,6 +18,7 @@ mod figures;
 mod forward;
 mod fresnel_pinned;
 mod fresnel_props;
+mod fuzz;
 mod interaction_props;
 mod material;
 mod path_solver;
