@@ -419,9 +419,7 @@ fn wedge(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let reach = (0.9 * t0_um * 1e-6 / tan_a).min(REACH_M);
     let fringe = nm * 1e-9 / (2.0 * n * alpha_deg.to_radians().sin());
     let centre = reach * d.real(-0.5, 0.5);
-    let half = (fringe * d.log(1e-2, 10.0))
-        .min(reach - centre.abs())
-        .max(1e-12);
+    let half = (fringe * d.log(1e-2, 10.0)).min(0.5 * (reach - centre.abs()));
     let h_src = d.log(1e-6, 1.0);
     // The beam reflected by the bottom face leaves the top face at θe (sin θe = n sin 2α / n0)
     // and walks off sideways by h tan θe before reaching the probe at height h: keep its

@@ -29,11 +29,30 @@ pub fn candidates(v: f64, kind: DrawKind) -> Vec<f64> {
     }
     let mut unique: Vec<f64> = Vec::new();
     for c in out {
-        if c.is_finite() && c != v && !unique.contains(&c) {
+        if c.is_finite() && simpler(c, v) && !unique.contains(&c) {
             unique.push(c);
         }
     }
     unique
+}
+
+/// How complex a number reads: 0, then 1, then by its significant digits, then by size.
+fn complexity(x: f64) -> (u32, f64) {
+    if x == 0.0 {
+        (0, 0.0)
+    } else if x == 1.0 {
+        (1, 0.0)
+    } else {
+        let digits = (1..=17)
+            .find(|&d| round_significant(x, d) == x)
+            .unwrap_or(17);
+        (1 + digits as u32, x.abs())
+    }
+}
+
+/// Whether `a` is strictly simpler than `b` (so shrinking cannot cycle).
+fn simpler(a: f64, b: f64) -> bool {
+    complexity(a).partial_cmp(&complexity(b)) == Some(std::cmp::Ordering::Less)
 }
 
 /// `v` rounded to `digits` significant decimal digits.
@@ -103,6 +122,11 @@ mod tests {
     fn candidates_are_simplest_first_and_exclude_the_value() {
         let c = candidates(2.5, DrawKind::Real { lo: -1.0, hi: 10.0 });
         assert_eq!(&c[..4], &[0.0, 1.0, -1.0, 2.0]);
+        assert!(candidates(0.0, DrawKind::Real { lo: -1.0, hi: 1.0 }).is_empty());
+        assert_eq!(
+            candidates(1.0, DrawKind::Real { lo: -1.0, hi: 1.0 }),
+            vec![0.0]
+        );
         assert!(!c.contains(&2.5));
         assert_eq!(candidates(2.0, DrawKind::Choice), vec![0.0]);
         assert!(candidates(0.0, DrawKind::Flag).is_empty());
