@@ -143,6 +143,7 @@ pub mod figures;
 pub mod forward;
 pub mod forward_study;
 pub mod fresnel;
+pub mod fuzz;
 pub mod geometry;
 pub mod grade;
 pub mod interaction;

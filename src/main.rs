@@ -167,6 +167,27 @@ enum Command {
         #[arg(long, default_value = "cases")]
         cases_dir: PathBuf,
     },
+    /// Random valid scenes of every family with a closed form, each checked at `vector`
+    /// against its primary reference; failures are shrunk into case files in --out. Exit 0
+    /// if no scene fails, 1 if one does, 2 on a usage error.
+    Fuzz {
+        /// Families (comma-separated): young_exact, lloyd, two_beam_plate, airy, wedge,
+        /// rhomb_retardance, plane_wave_beams, michelson, incoherent_sum, coherence_gaussian.
+        /// Default: all.
+        #[arg(long, value_delimiter = ',')]
+        family: Vec<String>,
+        /// Scenes per family.
+        #[arg(long, default_value_t = 100)]
+        count: usize,
+        #[arg(long, default_value_t = 1)]
+        seed: u64,
+        /// Skip scenes carrying any of these region tags (comma-separated), e.g. medium,rotated.
+        #[arg(long, value_delimiter = ',')]
+        skip: Vec<String>,
+        /// Folder for the shrunk case file of each failure.
+        #[arg(long, default_value = "reports/fuzz")]
+        out: PathBuf,
+    },
     /// Renderer mode: forward ray fans into pixels, each estimator against the exact result,
     /// over rays per pixel and pixel size; writes DIR/forward/forward.csv.
     Forward {
@@ -408,6 +429,13 @@ fn run_cli() -> ExitCode {
                 }
             }
         }
+        Command::Fuzz {
+            family,
+            count,
+            seed,
+            skip,
+            out,
+        } => fuzz_command(&family, count, seed, skip, &out),
         Command::Forward {
             out,
             seed,
@@ -640,4 +668,73 @@ fn render_command(
         progress: true,
     };
     fringe::render::run_command(&cmd)
+}
+
+/// `fringe fuzz`: check the options, run, print the report, write the shrunk failures.
+fn fuzz_command(
+    family: &[String],
+    count: usize,
+    seed: u64,
+    skip: Vec<String>,
+    out: &std::path::Path,
+) -> ExitCode {
+    use fringe::fuzz::{self, Family};
+    let families: Result<Vec<Family>, String> = if family.is_empty() {
+        Ok(Family::ALL.to_vec())
+    } else {
+        family
+            .iter()
+            .map(|f| {
+                Family::parse(f).ok_or_else(|| {
+                    format!(
+                        "--family: unknown family {f:?}; allowed: {}",
+                        Family::ALL.map(|f| f.name()).join(", ")
+                    )
+                })
+            })
+            .collect()
+    };
+    let families = match families {
+        Ok(f) => f,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return ExitCode::from(2);
+        }
+    };
+    if count == 0 || count > 10_000_000 {
+        eprintln!("error: --count: 1 to 10000000 scenes per family, got {count}");
+        return ExitCode::from(2);
+    }
+    let opts = fuzz::FuzzOptions {
+        families,
+        count,
+        seed,
+        skip,
+        ..fuzz::FuzzOptions::default()
+    };
+    let report = fuzz::run(&opts);
+    if let Err(e) = report.write_failures(out) {
+        eprintln!("error: {e}");
+        return ExitCode::from(2);
+    }
+    out!("{}", report.text(Some(out)));
+    let total = report.total();
+    if total.fail == 0 {
+        eprintln!(
+            "no failures in {} scene(s) (seed {seed}); {} refused ({:.2}%), {} skipped",
+            total.run(),
+            total.refused,
+            100.0 * total.refusal_rate(),
+            total.skipped
+        );
+        ExitCode::SUCCESS
+    } else {
+        eprintln!(
+            "FAILED: {} of {} scene(s) (seed {seed}); shrunk cases in {}",
+            total.fail,
+            total.run(),
+            out.display()
+        );
+        ExitCode::from(1)
+    }
 }
