@@ -54,8 +54,12 @@ impl MetricResult {
             t.iter()
                 .zip(&self.analytic)
                 .map(|(t, a)| {
+                    // A retardance is a phase: judged in radians (relative to 1 rad), since
+                    // near the critical angle it goes to 0 and a relative error would not be
+                    // one the tracer makes.
                     let s = match self.kind {
                         MetricKind::Intensity => scale,
+                        MetricKind::Retardance => 1.0,
                         _ => a.abs(),
                     };
                     if s > 0.0 {
