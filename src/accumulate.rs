@@ -16,7 +16,7 @@
 //! Measured against a double-double reference (checked against mpmath) over ~10^6 arguments
 //! (random up to 10^7 cycles, small and tiny ones, every octant boundary ± a few ulps, phases
 //! ≥ 2^48), the error is at most 1.11e-16 (2^-53) per component, where
-//! `f64::sin_cos(2π·frac)` reaches 3.6e-16 (see `tests/accumulate.rs`).
+//! `f64::sin_cos(2π·frac)` reaches 3.6e-16 (see `tests/suite/accumulate.rs`).
 //!
 //! # Summation
 //!
@@ -51,7 +51,7 @@
 //! | AVX2 | 124 M/s | 111 M/s | 91 / 108 |
 //!
 //! (+27% / +40%); the phasor loop alone goes from ~165 to ~340 M/s. No FMA is enabled and Rust
-//! never contracts a·b + c, so both copies give the same bits (tests/accumulate.rs checks the
+//! never contracts a·b + c, so both copies give the same bits (tests/suite/accumulate.rs checks the
 //! batch path against [`Accumulator::add`], which is not dispatched). Two layout details
 //! matter for the compensated AVX2 path (same measurement): the phasor scratch block is
 //! cache-line aligned (from a `Vec<Complex64>`, only 8-byte aligned, throughput varied between

@@ -240,7 +240,7 @@ pub fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
     };
     let c = d_i.cross(n_o);
     // Near normal incidence d_i × N has relative error ε/|d_i × N|: project out N again so s
-    // stays ⟂ N and d_i to rounding (a no-op in exact arithmetic; tests/interaction_props.rs).
+    // stays ⟂ N and d_i to rounding (a no-op in exact arithmetic; tests/suite/interaction_props.rs).
     (c.length() > 1e-12).then(|| (c - c.dot(n_o) * n_o).normalize())
 }
 

@@ -1,5 +1,5 @@
 //! The stability sweep (robustness, issue #6): the tracer at the numerical extremes that
-//! `tests/stability.rs` asserts, each traced value next to a closed form evaluated independently
+//! `tests/suite/stability.rs` asserts, each traced value next to a closed form evaluated independently
 //! of the tracer, with its deviation, tolerance and verdict; and the optical-path sweep from
 //! 1 nm to 10 m, which also shows what single-precision (binary32) absolute phases would cost.
 //!
@@ -791,7 +791,7 @@ impl SplitMix {
 }
 
 /// Seeded random valid films: every traced R, T finite and R + T = 1 with the bounce count
-/// from the Airy tail bound (the proptest of tests/stability.rs, as one row).
+/// from the Airy tail bound (the proptest of tests/suite/stability.rs, as one row).
 fn random_film_rows(rows: &mut Vec<StabilityRow>) {
     const SCENES: usize = 32;
     let mut rng = SplitMix(6);

@@ -413,7 +413,7 @@ fn sig(text: &str, digits: usize) -> String {
 fn stability_section(h: &mut String, out: &Path, rows: &[StabilityCsvRow]) {
     h.push_str(
         "<section id=\"stability\"><h2>Stability</h2>\n<p>The tracer at numerical extremes \
-         (the conditions of <code>tests/stability.rs</code>): normal incidence, 1e-12 rad, \
+         (the conditions of <code>tests/suite/stability.rs</code>): normal incidence, 1e-12 rad, \
          Brewster's and the critical angle ± 1e-12 rad, 89.9999° and grazing; n1 = n2, \
          n2 − n1 = 1e-12, n = 4; films from 0.1 nm to 1 mm against the Airy sum; the high-finesse \
          tail bound; random films; two-beam phases for optical paths from 1 nm to 10 m. Each traced \
