@@ -19,6 +19,7 @@ mod forward;
 mod fresnel_pinned;
 mod fresnel_props;
 mod interaction_props;
+mod invariance;
 mod material;
 mod path_solver;
 mod pipeline_props;
