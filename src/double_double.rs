@@ -200,8 +200,18 @@ fn difference(a: DVec3, b: DVec3) -> [DoubleDouble; 3] {
 /// (relative ~1e-31), far below what rounding the points themselves does to a path.
 #[inline]
 pub fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
+    // Each square (h + l)² = TwoProd(h, h) + 2hl (l² < 2⁻¹⁰⁶ h² is below the format); the three
+    // are positive, so the sum needs no cancellation-proof addition: two TwoSums of the high
+    // parts, the low parts added in f64 (relative error a few 2⁻¹⁰⁴).
+    let square = |x: DoubleDouble| {
+        let p = two_prod(x.hi, x.hi);
+        (p.hi, p.lo + 2.0 * x.hi * x.lo)
+    };
     let [dx, dy, dz] = difference(a, b);
-    (dx * dx + dy * dy + dz * dz).sqrt()
+    let ((x, xl), (y, yl), (z, zl)) = (square(dx), square(dy), square(dz));
+    let s = two_sum(x, y);
+    let t = two_sum(s.hi, z);
+    fast_two_sum(t.hi, t.lo + s.lo + xl + yl + zl).sqrt()
 }
 
 /// d·(x − reference) in double-double for the f64 vectors `d` (unit, a ray direction), `x`
@@ -283,6 +293,29 @@ mod tests {
             "actual {:e}, expected {expected:e}",
             segment_length(o, b).to_f64()
         );
+    }
+
+    #[test]
+    fn segment_length_equals_the_double_double_norm() {
+        // The fast sum of squares against the general double-double arithmetic.
+        let pts = [
+            (DVec3::new(0.1, -0.2, 0.3), DVec3::new(100.0, 3e-7, -12.5)),
+            (DVec3::new(1e-12, 0.0, 0.0), DVec3::new(0.0, 1e-12, 1e-12)),
+            (
+                DVec3::new(567.0, 0.0, 1e-3),
+                DVec3::new(567.0 + 1e-6, 0.0, -2e-6),
+            ),
+        ];
+        for (a, b) in pts {
+            let [dx, dy, dz] = difference(a, b);
+            let general = (dx * dx + dy * dy + dz * dz).sqrt();
+            let fast = segment_length(a, b);
+            let err = (fast - general).to_f64().abs();
+            assert!(
+                err <= 1e-30 * general.hi,
+                "{a} → {b}: {fast:?} vs {general:?}"
+            );
+        }
     }
 
     #[test]

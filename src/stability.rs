@@ -16,15 +16,25 @@
 //!   conditioned, first-order expansions at Brewster's angle and for n2 − n1 = 1e-12, and the
 //!   half-angle retardance tan(|Δ|/2) = cos θ·sqrt(sin²θ − n21²)/sin²θ under total internal
 //!   reflection (with sin²θ − n21² = sin(θ−θc)·sin(θ+θc), free of cancellation).
-//! * **films**: the far-field reflectance of a film summed bounce by bounce by the tracer
-//!   against the Airy sum of [`Film`] (the same Fresnel kernels, an independent summation).
-//! * **finesse**: the truncated traced sum against Airy, with the geometric tail bound as the
-//!   tolerance, so the bound itself is checked for honesty.
+//! * **films**: the far-field reflectance of a film (1 pm to 1 mm, at 0, 1 rad and 89.9°) summed
+//!   bounce by bounce by the tracer, with bounce counts from the Airy tail bound (< 1e-15),
+//!   against the Airy sum of [`Film`] (the same Fresnel kernels, an independent summation) at
+//!   1e-12 relative plus the conditioning of R on f64 inputs ([`film_tolerance`]); the same film
+//!   with the wave's phase referred to a point 100 m away (a global phase); and R(1 pm) − R(bare
+//!   interface) against the Airy difference (the film does not vanish as d → 0).
+//! * **finesse**: the traced sum truncated after N reflected orders against the closed-form
+//!   truncated sum (`Film::r_truncated`) at 1e-12, the geometric tail bound checked for honesty
+//!   on the closed forms, and the full sum against Airy.
 //! * **random films**: seeded pseudo-random valid films, every number finite and R + T = 1.
 //! * **paths**: two coherent point sources on one line with a point beyond them, as in the
 //!   tests: the exact path difference is the source offset Δs itself (collinear), so the exact
-//!   two-beam phase is 2πΔs/λ. fringe forms path differences in metres before phases
-//!   ([`trace::contribution_from`]), in f64.
+//!   two-beam phase is 2πΔs/λ. fringe carries optical paths in double-double and forms their
+//!   difference before rounding ([`trace::contribution_from`]): the phase is the exact one to
+//!   1e-12 rad from 1 nm to 10 m.
+//!
+//! Every judged row can fail: [`sweep_with`]`(`[`PathArithmetic::AbsoluteF64`]`)` holds the
+//! traced paths as a naive tracer would (absolute, rounded to f64) and fails the path rows from
+//! ~1 mm on and the 100 m reference row (a test keeps it so).
 //!
 //! Near a singular angle the offset "1e-12 rad" is itself known only to the rounding of the
 //! angle (~1e-16 rad, 1e-4 of the offset) in the tracer and in the closed form alike, so
@@ -42,8 +52,8 @@
 //! (1.1e7 rad at 1 m) in binary32 too would add a rounding of up to 0.5 rad (their spacing is
 //! 1 rad). Errors are not reduced modulo 2π: beyond π the fringe
 //! can be anywhere. In f64 both ways of forming the phase err by ~1e-9 rad at 1 m (the spacing
-//! of f64 at 1 m, 2.2e-16 m, is 2.5e-9 rad); fringe's differenced form keeps the phase argument
-//! small (no 1e7 rad phases to round) and stays within the 1e-6 rad up to 10 m. This
+//! of f64 at 1 m, 2.2e-16 m, is 2.5e-9 rad); fringe's double-double paths, differenced before
+//! rounding, keep the phase within 1e-12 rad up to 10 m. This
 //! illustration is reported for information; only fringe's own method is judged.
 //!
 //! # When it runs
@@ -210,7 +220,7 @@ impl StabilityRow {
 pub struct PathPoint {
     /// Optical path of the nearer beam, s (m).
     pub path_m: f64,
-    /// fringe: traced paths, differenced in metres, then 2πΔs/λ (rad).
+    /// fringe: traced paths, differenced in double-double, then 2πΔs/λ (rad).
     pub fringe_rad: f64,
     /// Phases from absolute f64 paths, 2πs2/λ − 2πs1/λ (rad).
     pub f64_absolute_rad: f64,
@@ -1094,7 +1104,7 @@ fn length_label(m: f64) -> String {
 
 /// Rows of the path sweep at whole decades: fringe judged, the two absolute-phase variants
 /// for information.
-fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint]) {
+fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint], arithmetic: PathArithmetic) {
     for p in points {
         let mantissa = p.path_m / 10f64.powf(p.path_m.log10().round());
         if (mantissa - 1.0).abs() > 1e-9 {
@@ -1112,7 +1122,12 @@ fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint]) {
         let q = format!("two-beam phase 2πΔs/λ (rad), worst of {PATH_OFFSETS} Δs");
         rows.push(StabilityRow::new(
             "paths",
-            cond("fringe: traced, paths differenced in double-double"),
+            cond(match arithmetic {
+                PathArithmetic::DoubleDouble => {
+                    "fringe: traced, paths differenced in double-double"
+                }
+                PathArithmetic::AbsoluteF64 => "naive build: traced, absolute paths rounded to f64",
+            }),
             &q,
             p.fringe_worst.0,
             p.fringe_worst.1,
@@ -1156,7 +1171,7 @@ pub fn sweep_with(arithmetic: PathArithmetic) -> Sweep {
     finesse_rows(&mut rows, arithmetic);
     random_film_rows(&mut rows, arithmetic);
     let paths = path_points_with(&path_grid(), arithmetic);
-    path_rows(&mut rows, &paths);
+    path_rows(&mut rows, &paths, arithmetic);
     Sweep {
         rows,
         paths,

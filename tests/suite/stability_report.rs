@@ -151,6 +151,15 @@ fn a_naive_build_with_absolute_f64_paths_fails_the_sweep() {
         .iter()
         .filter(|r| r.pass == Some(false))
         .collect();
+    for r in &failed {
+        eprintln!(
+            "naive build fails: {} / {}: deviation {:e} > {:e}",
+            r.group,
+            r.condition,
+            r.deviation,
+            r.tolerance.unwrap_or(f64::NAN)
+        );
+    }
     for group in ["paths", "films"] {
         assert!(
             failed.iter().any(|r| r.group == group),
