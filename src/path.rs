@@ -1421,12 +1421,13 @@ fn explore(
         }
         // Any plane ahead (t > 0, no distance epsilon: a film of 1 pm is found); the surface
         // the ray leaves is skipped by name.
-        if let Some(t) = surf.plane.intersect(o, d) {
-            if t > 0.0 && best.is_none_or(|(bt, _)| t < bt) {
-                let x = o + t * d;
-                if surf.blocks(x) || surf.interacts(x) {
-                    best = Some((t, j));
-                }
+        if let Some(t) = surf.plane.intersect(o, d)
+            && t > 0.0
+            && best.is_none_or(|(bt, _)| t < bt)
+        {
+            let x = o + t * d;
+            if surf.blocks(x) || surf.interacts(x) {
+                best = Some((t, j));
             }
         }
     }
