@@ -72,7 +72,7 @@ fn bench(c: &mut Criterion) {
                 let mut s = 0.0;
                 for t in &targets {
                     let p = solve(&scene, &optics, emitter, black_box(&seq), *t, &opts).unwrap();
-                    s += p.optical_path_m;
+                    s += p.optical_path_m();
                 }
                 s
             })

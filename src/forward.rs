@@ -26,6 +26,7 @@
 //! same picture on any number of threads.
 
 use crate::accumulate::{Accumulator, phasor_from_cycles};
+use crate::double_double::DoubleDouble;
 use crate::interaction::{InterfaceHit, interact};
 use crate::path::{Event, EventKind};
 use crate::ray::{Field3, Ray};
@@ -344,7 +345,9 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
     let (cw, chh) = (pw / cells as f64, ph / cells as f64);
     let cell_area = cw * chh;
     // Phase reference: a common optical path (only differences matter).
-    let reference_m = landings.first().map_or(0.0, |l| l.ray.optical_path_m);
+    let reference = landings
+        .first()
+        .map_or(DoubleDouble::ZERO, |l| l.ray.optical_path);
     // Bucket landings by (pixel, cell) in landing order (deterministic).
     let mut buckets: HashMap<(usize, usize), Vec<usize>> = HashMap::new();
     for (k, l) in landings.iter().enumerate() {
@@ -378,7 +381,7 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
                     let amp = (l.power / (cell_area * cos * l.ray.index)).sqrt() / norm;
                     acc.add_parts(
                         l.ray.coherence_id,
-                        (l.ray.optical_path_m - reference_m) / l.ray.wavelength_m,
+                        (l.ray.optical_path - reference).to_f64() / l.ray.wavelength_m,
                         &e.map(|x| x * amp),
                     );
                 }
@@ -397,7 +400,7 @@ pub fn image(landings: &[Landing], screen: &Screen, estimator: Estimator) -> Vec
                             ..Default::default()
                         }
                     });
-                    let mut op = l.ray.optical_path_m - reference_m;
+                    let mut op = (l.ray.optical_path - reference).to_f64();
                     if transport {
                         op += l.ray.index * l.ray.dir.dot(c - l.point);
                     }

@@ -35,6 +35,13 @@ impl Plane {
         Some(-self.signed_distance(origin) / denom)
     }
 
+    /// The point of the plane nearest `x` (the orthogonal projection x − s·normal, s the signed
+    /// distance). In f64 the result is off the plane by the rounding of `x − point` only.
+    #[inline(always)]
+    pub fn project(&self, x: DVec3) -> DVec3 {
+        x - self.signed_distance(x) * self.normal
+    }
+
     /// Mirror image of a point in the plane (the image method).
     pub fn mirror_point(&self, x: DVec3) -> DVec3 {
         x - 2.0 * self.signed_distance(x) * self.normal

@@ -138,6 +138,7 @@ pub mod beats;
 pub mod case;
 pub mod check;
 pub mod colour;
+pub mod double_double;
 pub mod fidelity;
 pub mod figures;
 pub mod forward;

@@ -19,7 +19,8 @@
 //! `S² = (n_src/n_P)·Π_refractions(n2 cos θt/(n1 cos θi))·(launch measure)/(dA⊥)`; for a point
 //! source in a homogeneous medium this is exactly 1/r².
 
-use crate::geometry::Extent;
+use crate::double_double::{DoubleDouble, projection, segment_length};
+use crate::geometry::{Extent, Plane};
 use crate::interaction::{InterfaceHit, SurfaceOptics, indices_for};
 use crate::scene::{Scene, SceneOptics, SurfaceKind};
 use crate::sequence_tree::{SequenceTree, TreeBuilder};
@@ -131,8 +132,15 @@ pub struct SolvedPath {
     pub dirs: Trail<DVec3>,
     /// Refractive index along each segment (same length as `dirs`).
     pub indices: Trail<f64>,
-    /// Σ n_i L_i from the launch to the end (far field: to the reference wavefront) (m).
-    pub optical_path_m: f64,
+    /// Σ n_i L_i from the launch to the end (far field: to the reference wavefront) (m), in
+    /// double-double: each length from exact coordinate differences, the far-field projection
+    /// with exact differences and products ([`crate::double_double`]).
+    pub optical_path: DoubleDouble,
+    /// The optical path already travelled at the launch point `points[0]` (m): 0, except for a
+    /// plane wave into the far field launched off its reference wavefront
+    /// ([`plane_wave_launch`]), where it is n·d·(launch − reference). Included in
+    /// `optical_path`; rays start with it.
+    pub start_optical_path: DoubleDouble,
     /// Distance between the landing point and the target (m); for the far field the sine of the
     /// angle between the exit and target directions.
     pub landing_error: f64,
@@ -144,6 +152,13 @@ pub struct SolvedPath {
     pub has_tir: bool,
     /// S², the intensity factor of geometric spreading (1 when spreading is off).
     pub spreading: f64,
+}
+
+impl SolvedPath {
+    /// The optical path rounded to f64 (m).
+    pub fn optical_path_m(&self) -> f64 {
+        self.optical_path.to_f64()
+    }
 }
 
 /// The geometric ray state during a trace.
@@ -233,7 +248,11 @@ fn step_planes(
         .intersect(o, d)
         .filter(|t| *t > 0.0)
         .ok_or(PathError::Missed { event: k })?;
-    let x = o + t * d;
+    // The hit point on the plane itself: o + t·d rounds at the size of t (a launch 100 m away
+    // leaves the point ~1e-14 m off the plane, a first-order error of every path through it);
+    // moved back onto the plane it is off by the rounding of its distance to the plane's point
+    // only. Along the plane the rounding is second order (Fermat).
+    let x = surf.plane.project(o + t * d);
     let normal = surf.plane.normal;
     let cos_i = d.dot(normal).abs().min(1.0);
     let (n1, n2) = indices_for(so, normal, d, n);
@@ -700,6 +719,67 @@ fn scene_scale(scene: &Scene, anchor: DVec3, target: &Target) -> f64 {
     s.max(1e-6)
 }
 
+/// Where the rays of a plane wave along unit `direction` (phase 0 on the wavefront through
+/// `reference`) observed in the far field start, and the distance along `direction` from that
+/// wavefront to the start: (launch point, d·(launch − reference) in double-double; the optical
+/// path there is the ambient index times it).
+///
+/// Every launch is equivalent for the far field, but the *size of the coordinates* of the hit
+/// points is not: a hit point rounded by ε along its plane costs ε²/L on a segment of length L
+/// (second order, by Fermat), and a reference point 100 m away puts the hit points ~100 m (at
+/// oblique incidence up to ~1000 m) from the origin, ε ~ 1e-13 m, which a 1 nm film (L ~ 1 nm)
+/// does feel. So when every surface is an unbounded, non-opaque plane parallel to the others (a
+/// film stack: the planes met and their order do not depend on the launch line) and the
+/// reference lies more than 1 mm before the first plane the wave meets, the rays start 1 mm
+/// before that plane on the line through its point (a local anchor of the scene), carrying the
+/// exact path from the reference's wavefront. Otherwise they start at `reference` (path 0), and
+/// the reference point also fixes the launch line through bounded surfaces.
+pub fn plane_wave_launch(
+    scene: &Scene,
+    direction: DVec3,
+    reference: DVec3,
+) -> (DVec3, DoubleDouble) {
+    let from_reference = (reference, DoubleDouble::ZERO);
+    let Some(first) = scene.surfaces.first() else {
+        return from_reference;
+    };
+    let nu = first.plane.normal;
+    let stack = scene.surfaces.iter().all(|s| {
+        matches!(s.extent, Extent::Unbounded)
+            && !matches!(s.kind, SurfaceKind::Opaque { .. })
+            && (s.plane.normal == nu || s.plane.normal.cross(nu).length_squared() <= 1e-30)
+    });
+    if !stack {
+        return from_reference;
+    }
+    // The first plane met: the nearest ahead of the reference along the direction.
+    let nearest = scene
+        .surfaces
+        .iter()
+        .filter_map(|s| s.plane.intersect(reference, direction).map(|t| (t, s)))
+        .fold(
+            None::<(f64, &crate::scene::Surface)>,
+            |best, (t, s)| match best {
+                Some((bt, _)) if bt <= t => best,
+                _ => Some((t, s)),
+            },
+        );
+    // Every plane must lie ahead (the reference before the whole stack), the first by > 1 mm.
+    const STANDOFF_M: f64 = 1e-3;
+    let all_ahead = scene.surfaces.iter().all(|s| {
+        s.plane
+            .intersect(reference, direction)
+            .is_some_and(|t| t > 0.0)
+    });
+    match nearest {
+        Some((t, surf)) if all_ahead && t > STANDOFF_M => {
+            let launch = surf.plane.point - STANDOFF_M * direction;
+            (launch, projection(direction, launch, reference))
+        }
+        _ => from_reference,
+    }
+}
+
 /// Find the exact path from `emitter` through `seq` to `target`.
 pub fn solve(
     scene: &Scene,
@@ -726,16 +806,12 @@ pub fn solve(
     ) = (emitter, target)
     {
         let mut g = Geometry::empty();
-        trace_planes(
-            scene,
-            optics,
-            reference_point,
-            direction.normalize(),
-            seq,
-            &mut g,
-        )?;
+        let d = direction.normalize();
+        let (launch, ahead) = plane_wave_launch(scene, d, reference_point);
+        trace_planes(scene, optics, launch, d, seq, &mut g)?;
         let err = far_field_landing(*g.dirs.last().unwrap(), dir)?;
-        return finish(scene, g, seq, &target, err, 0, 1.0);
+        let start = ahead.mul_f64(optics.ambient_index);
+        return finish(scene, g, seq, &target, (err, 0, 1.0), start);
     }
 
     // Initial guess by the image method.
@@ -911,7 +987,14 @@ pub fn solve(
         }
         g.points.push(p);
     }
-    finish(scene, g, seq, &target, landing_error, iterations, spreading)
+    finish(
+        scene,
+        g,
+        seq,
+        &target,
+        (landing_error, iterations, spreading),
+        DoubleDouble::ZERO,
+    )
 }
 
 /// Whether event `k` (`ev` at `x`) lies outside its surface's extent.
@@ -923,9 +1006,42 @@ fn out_of_extent(scene: &Scene, k: usize, ev: Event, x: DVec3) -> Option<PathErr
     })
 }
 
+/// Where the segment from `a` along unit `d` over `len` m (`f64::INFINITY`: a ray) crosses
+/// `plane` strictly between its ends: the ray parameter and the point, or `None`.
+///
+/// Scale-free: an end counts as on the plane (no crossing there) only when its signed distance
+/// is within the rounding of that distance itself, a few ulps of its distance from the plane's
+/// point — no absolute length, so a plane 1 pm from an end is crossed (a film of 1 pm is a
+/// film) while a plane through an end is not.
+#[inline(always)]
+pub fn crossing(plane: &Plane, a: DVec3, d: DVec3, len: f64) -> Option<(f64, DVec3)> {
+    let rate = d.dot(plane.normal);
+    if rate == 0.0 {
+        return None;
+    }
+    let sa = plane.signed_distance(a);
+    let t = -sa / rate;
+    if t <= 0.0 || t >= len {
+        return None;
+    }
+    // Rounding of the signed distances at the ends (8 ulps of the distance to the plane's
+    // point, which bounds the dot product's rounding).
+    let rounding = |x: DVec3| 8.0 * f64::EPSILON * (x - plane.point).abs().max_element();
+    if sa.abs() <= rounding(a) {
+        return None;
+    }
+    if len.is_finite() {
+        let b = a + len * d;
+        if (sa + rate * len).abs() <= rounding(b) {
+            return None;
+        }
+    }
+    Some((t, a + t * d))
+}
+
 /// Whether segment `i` (from `a` along `d` over `len` m; `f64::INFINITY` for the far field's
 /// last) crosses a blocker or an interacting surface other than its end surfaces `ends` (the
-/// events before and after it).
+/// events before and after it), strictly between its ends ([`crossing`]: no distance epsilon).
 #[inline(always)]
 fn segment_blocked(
     scene: &Scene,
@@ -939,37 +1055,40 @@ fn segment_blocked(
         if ends.contains(&Some(j)) {
             continue;
         }
-        if let Some(t) = surf.plane.intersect(a, d) {
-            let eps = 1e-12 * (1.0 + t.abs());
-            if t > eps && t < len - eps {
-                let x = a + t * d;
-                if surf.blocks(x) || surf.interacts(x) {
-                    return Some(PathError::Blocked {
-                        segment: i,
-                        surface: j,
-                    });
-                }
-            }
+        if let Some((_, x)) = crossing(&surf.plane, a, d, len)
+            && (surf.blocks(x) || surf.interacts(x))
+        {
+            return Some(PathError::Blocked {
+                segment: i,
+                surface: j,
+            });
         }
     }
     None
 }
 
-/// The optical path from the exit point `x` (direction `d`, index `n`) to the far-field
-/// wavefront through `reference`: −n·d·(x − reference).
-fn to_far_wavefront(x: DVec3, d: DVec3, n: f64, reference: DVec3) -> f64 {
-    -(n * d.dot(x - reference))
+/// The optical path from the exit point `x` (index `n`) to the far-field wavefront through
+/// `reference` perpendicular to the unit far-field direction `d`: −n·d·(x − reference), in
+/// double-double ([`projection`]: a reference 100 m away keeps the digits of the path).
+///
+/// `d` is the *target's* direction, the same for every path into it, not each path's own exit
+/// direction: those agree only to the rounding of their events (~1e-16 per event, more over
+/// many reflected orders), and a direction error δ moves the projection of a point ℓ from the
+/// reference by δ·ℓ — 1e-16 m at ℓ = 1 m, a 1e-9 rad phase error that grows with the
+/// distance to the reference.
+fn to_far_wavefront(x: DVec3, d: DVec3, n: f64, reference: DVec3) -> DoubleDouble {
+    -projection(d, x, reference).mul_f64(n)
 }
 
-/// Validate extents and blockers and assemble the [`SolvedPath`].
+/// Validate extents and blockers and assemble the [`SolvedPath`]; `start` is the optical path
+/// at the launch point ([`SolvedPath::start_optical_path`]).
 fn finish(
     scene: &Scene,
     g: Geometry,
     seq: &[Event],
     target: &Target,
-    landing_error: f64,
-    iterations: usize,
-    spreading: f64,
+    (landing_error, iterations, spreading): (f64, usize, f64),
+    start: DoubleDouble,
 ) -> Result<SolvedPath, PathError> {
     // Each event point must lie on its surface.
     for (k, ev) in seq.iter().enumerate() {
@@ -984,15 +1103,15 @@ fn finish(
     } else {
         g.points.len() - 1
     };
-    // Σ n_i L_i over the finite segments, each length measured once, summed in order from
-    // −0.0 exactly as `Iterator::sum` does.
-    let mut optical_path_m = -0.0;
+    // Σ n_i L_i over the finite segments in double-double, each length measured once from
+    // exact coordinate differences, summed in order (as `FarFieldPaths` sums them).
+    let mut optical_path = start;
     for i in 0..n_seg {
         let a = g.points[i];
         let len = if i + 1 < g.points.len() {
-            let len = (g.points[i + 1] - a).length();
-            optical_path_m += g.indices[i] * len;
-            len
+            let len = segment_length(a, g.points[i + 1]);
+            optical_path += len.mul_f64(g.indices[i]);
+            len.to_f64()
         } else {
             f64::INFINITY
         };
@@ -1004,17 +1123,14 @@ fn finish(
             return Err(e);
         }
     }
-    if let Target::Direction { reference, .. } = target {
-        let (x, d, n) = (
-            *g.points.last().unwrap(),
-            *g.dirs.last().unwrap(),
-            *g.indices.last().unwrap(),
-        );
-        optical_path_m += to_far_wavefront(x, d, n, *reference);
+    if let Target::Direction { reference, dir } = target {
+        let (x, n) = (*g.points.last().unwrap(), *g.indices.last().unwrap());
+        optical_path += to_far_wavefront(x, dir.normalize(), n, *reference);
     }
     Ok(SolvedPath {
         sequence: seq.to_vec().into(),
-        optical_path_m,
+        optical_path,
+        start_optical_path: start,
         landing_error,
         iterations,
         denser_reflections: g.denser_reflections,
@@ -1046,8 +1162,9 @@ struct Beginning {
     indices: Trail<f64>,
     denser_reflections: usize,
     has_tir: bool,
-    /// Σ n_i L_i over the finite segments so far (summed in order from −0.0, as [`finish`]).
-    optical_path_m: f64,
+    /// Σ n_i L_i over the finite segments so far (double-double, summed in order as
+    /// [`finish`] sums them).
+    optical_path: DoubleDouble,
     /// The first event outside its extent, if any.
     out_of_extent: Option<PathError>,
     /// The first blocked finite segment, if any.
@@ -1071,6 +1188,8 @@ pub struct FarFieldPaths<'a> {
     optics: &'a SceneOptics,
     /// `stack[k]`: the beginning of k events.
     stack: Vec<Beginning>,
+    /// The optical path at the launch point ([`plane_wave_launch`]).
+    start: DoubleDouble,
 }
 
 impl<'a> FarFieldPaths<'a> {
@@ -1081,14 +1200,17 @@ impl<'a> FarFieldPaths<'a> {
         direction: DVec3,
         reference_point: DVec3,
     ) -> Self {
+        let d = direction.normalize();
+        let (launch, ahead) = plane_wave_launch(scene, d, reference_point);
+        let start = ahead.mul_f64(optics.ambient_index);
         let root = Beginning {
             sequence: Trail::shared(),
-            points: Trail::shared_of(reference_point),
-            dirs: Trail::shared_of(direction.normalize()),
+            points: Trail::shared_of(launch),
+            dirs: Trail::shared_of(d),
             indices: Trail::shared_of(optics.ambient_index),
             denser_reflections: 0,
             has_tir: false,
-            optical_path_m: -0.0,
+            optical_path: start,
             out_of_extent: None,
             blocked: None,
         };
@@ -1096,7 +1218,13 @@ impl<'a> FarFieldPaths<'a> {
             scene,
             optics,
             stack: vec![root],
+            start,
         }
+    }
+
+    /// The optical path at the launch point (m; [`SolvedPath::start_optical_path`]).
+    pub fn start_optical_path(&self) -> DoubleDouble {
+        self.start
     }
 
     /// Number of events of the current beginning.
@@ -1146,8 +1274,9 @@ impl<'a> FarFieldPaths<'a> {
         next.denser_reflections += usize::from(step.denser);
         next.has_tir |= step.tir;
         // The finite segment k, from the last point to this event, as `finish` checks it.
-        let len = (step.x - o).length();
-        next.optical_path_m += n * len;
+        let length = segment_length(o, step.x);
+        next.optical_path += length.mul_f64(n);
+        let len = length.to_f64();
         if next.out_of_extent.is_none() {
             next.out_of_extent = out_of_extent(self.scene, k, ev, step.x);
         }
@@ -1190,7 +1319,8 @@ impl<'a> FarFieldPaths<'a> {
             points: b.points.clone(),
             dirs: b.dirs.clone(),
             indices: b.indices.clone(),
-            optical_path_m: b.optical_path_m + to_far_wavefront(x, d, n, reference),
+            optical_path: b.optical_path + to_far_wavefront(x, dir.normalize(), n, reference),
+            start_optical_path: self.start,
             landing_error,
             iterations: 0,
             denser_reflections: b.denser_reflections,
@@ -1289,17 +1419,21 @@ fn explore(
         if Some(j) == from {
             continue;
         }
-        if let Some(t) = surf.plane.intersect(o, d) {
-            if t > 1e-12 && best.is_none_or(|(bt, _)| t < bt) {
-                let x = o + t * d;
-                if surf.blocks(x) || surf.interacts(x) {
-                    best = Some((t, j));
-                }
+        // Any plane ahead (t > 0, no distance epsilon: a film of 1 pm is found); the surface
+        // the ray leaves is skipped by name.
+        if let Some(t) = surf.plane.intersect(o, d)
+            && t > 0.0
+            && best.is_none_or(|(bt, _)| t < bt)
+        {
+            let x = o + t * d;
+            if surf.blocks(x) || surf.interacts(x) {
+                best = Some((t, j));
             }
         }
     }
     let Some((t, j)) = best else { return };
-    let x = o + t * d;
+    // On the plane itself (as the solver's `step_planes` puts it).
+    let x = scene.surfaces[j].plane.project(o + t * d);
     let Some(so) = optics.surfaces[j] else { return }; // opaque: absorbed
     let normal = scene.surfaces[j].plane.normal;
     let hit = InterfaceHit {

@@ -3,10 +3,12 @@
 //! The frame (X, Y, dir) is right-handed. The polarization is a Jones vector (J_x, J_y) in that
 //! frame; the complex 3D field amplitude is `E = J_x X + J_y Y` and the field at the ray's end is
 //! `E·e^{+i 2π Op/λ0}` (time dependence e^{-iωt}, docs/PHYSICS.md §1). Fresnel phases live in the
-//! Jones vector; path phase lives in the optical path `Op = Σ n_i L_i` (metres, f64), so that
-//! path *differences* can be formed before any phase is taken. Intensity = |J_x|² + |J_y|² =
+//! Jones vector; path phase lives in the optical path `Op = Σ n_i L_i` (metres, carried as a
+//! [`DoubleDouble`] with each length formed from exact coordinate differences), so that path
+//! *differences* can be formed to ~1e-30 m before any phase is taken (docs/PHYSICS.md §1). Intensity = |J_x|² + |J_y|² =
 //! trace of the coherence matrix.
 
+use crate::double_double::{DoubleDouble, segment_length};
 use crate::trail::Trail;
 use glam::DVec3;
 use num_complex::Complex64;
@@ -129,8 +131,10 @@ pub struct Ray {
     pub coherence_length_m: f64,
     /// Jones vector (complex amplitudes along X and Y); includes Fresnel phases.
     pub jones: [Complex64; 2],
-    /// Optical path Σ n_i L_i from the source (m).
-    pub optical_path_m: f64,
+    /// Optical path Σ n_i L_i from the source (m), in double-double: rounding it to f64 costs
+    /// ~1e-14 m (1e-7 rad) at 100 m, so differences are formed before rounding
+    /// ([`Ray::optical_path_m`] is the rounded value).
+    pub optical_path: DoubleDouble,
     /// Refractive index of the medium the ray travels in.
     pub index: f64,
     /// Every phase contribution so far.
@@ -184,7 +188,7 @@ impl Ray {
             coherence_id: INCOHERENT,
             coherence_length_m: f64::INFINITY,
             jones: [Complex64::from(amplitude), Complex64::from(0.0)],
-            optical_path_m: 0.0,
+            optical_path: DoubleDouble::ZERO,
             index,
             ledger: PhaseLedger::default(),
         }
@@ -206,20 +210,26 @@ impl Ray {
         [[a * a.conj(), a * b.conj()], [b * a.conj(), b * b.conj()]]
     }
 
-    /// Phase in cycles, Op/λ0 (the path phase divided by 2π).
+    /// The optical path Σ n_i L_i from the source rounded to f64 (m).
+    pub fn optical_path_m(&self) -> f64 {
+        self.optical_path.to_f64()
+    }
+
+    /// Phase in cycles, Op/λ0 (the path phase divided by 2π), of the rounded path.
     pub fn phase_cycles(&self) -> f64 {
-        self.optical_path_m / self.wavelength_m
+        self.optical_path_m() / self.wavelength_m
     }
 
     /// Move the ray's origin to `point` along its direction, adding n·L to the optical path
-    /// and a ledger entry. `point` must lie ahead on the ray.
+    /// (L = |point − origin| in double-double from the exact coordinate differences) and a
+    /// ledger entry. `point` must lie ahead on the ray.
     #[inline(always)]
     pub fn advance_to(&mut self, point: DVec3) {
-        let length_m = (point - self.origin).length();
-        self.optical_path_m += self.index * length_m;
+        let length = segment_length(self.origin, point);
+        self.optical_path += length.mul_f64(self.index);
         self.ledger.entries.push(LedgerEntry::Path {
             index: self.index,
-            length_m,
+            length_m: length.to_f64(),
         });
         self.origin = point;
     }

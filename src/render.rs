@@ -257,17 +257,18 @@ pub fn arrivals_at(
 fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<SpectralContribution>) {
     out.clear();
     let Some(first) = arr.first() else { return };
-    let reference_m = first.vector.optical_path_m;
+    // Path differences in double-double, rounded once (docs/PHYSICS.md §1).
+    let reference = first.vector.optical_path;
     match shading {
         Shading::Level(level) => {
             for a in arr {
-                let c = trace::contribution_from(a, level, reference_m);
+                let c = trace::contribution_from(a, level, reference);
                 let ray = if level == Fidelity::PaperRules {
                     a.paper.as_ref().expect(trace::PAPER_MISSING)
                 } else {
                     &a.vector
                 };
-                let delta_s_m = ray.optical_path_m - reference_m;
+                let delta_s_m = (ray.optical_path - reference).to_f64();
                 out.push(SpectralContribution {
                     coherence_id: c.coherence_id,
                     delta_s_m,
@@ -291,7 +292,7 @@ fn prepare(arr: &[Arrival], shading: Shading, out: &mut Vec<SpectralContribution
                 }
                 out.push(SpectralContribution {
                     coherence_id: a.vector.coherence_id,
-                    delta_s_m: a.vector.optical_path_m - reference_m,
+                    delta_s_m: (a.vector.optical_path - reference).to_f64(),
                     extra_cycles: 0.5 * a.path.denser_reflections as f64,
                     field: [
                         Complex64::from(power.sqrt()),

@@ -16,15 +16,25 @@
 //!   conditioned, first-order expansions at Brewster's angle and for n2 − n1 = 1e-12, and the
 //!   half-angle retardance tan(|Δ|/2) = cos θ·sqrt(sin²θ − n21²)/sin²θ under total internal
 //!   reflection (with sin²θ − n21² = sin(θ−θc)·sin(θ+θc), free of cancellation).
-//! * **films**: the far-field reflectance of a film summed bounce by bounce by the tracer
-//!   against the Airy sum of [`Film`] (the same Fresnel kernels, an independent summation).
-//! * **finesse**: the truncated traced sum against Airy, with the geometric tail bound as the
-//!   tolerance, so the bound itself is checked for honesty.
+//! * **films**: the far-field reflectance of a film (1 pm to 1 mm, at 0, 1 rad and 89.9°) summed
+//!   bounce by bounce by the tracer, with bounce counts from the Airy tail bound (< 1e-15),
+//!   against the Airy sum of [`Film`] (the same Fresnel kernels, an independent summation) at
+//!   1e-12 relative plus the conditioning of R on f64 inputs ([`film_tolerance`]); the same film
+//!   with the wave's phase referred to a point 100 m away (a global phase); and R(1 pm) − R(bare
+//!   interface) against the Airy difference (the film does not vanish as d → 0).
+//! * **finesse**: the traced sum truncated after N reflected orders against the closed-form
+//!   truncated sum (`Film::r_truncated`) at 1e-12, the geometric tail bound checked for honesty
+//!   on the closed forms, and the full sum against Airy.
 //! * **random films**: seeded pseudo-random valid films, every number finite and R + T = 1.
 //! * **paths**: two coherent point sources on one line with a point beyond them, as in the
 //!   tests: the exact path difference is the source offset Δs itself (collinear), so the exact
-//!   two-beam phase is 2πΔs/λ. fringe forms path differences in metres before phases
-//!   ([`trace::contribution_from`]), in f64.
+//!   two-beam phase is 2πΔs/λ. fringe carries optical paths in double-double and forms their
+//!   difference before rounding ([`trace::contribution_from`]): the phase is the exact one to
+//!   1e-12 rad from 1 nm to 10 m.
+//!
+//! Every judged row can fail: [`sweep_with`]`(`[`PathArithmetic::AbsoluteF64`]`)` holds the
+//! traced paths as a naive tracer would (absolute, rounded to f64) and fails the path rows from
+//! ~1 mm on and the 100 m reference row (a test keeps it so).
 //!
 //! Near a singular angle the offset "1e-12 rad" is itself known only to the rounding of the
 //! angle (~1e-16 rad, 1e-4 of the offset) in the tracer and in the closed form alike, so
@@ -42,8 +52,8 @@
 //! (1.1e7 rad at 1 m) in binary32 too would add a rounding of up to 0.5 rad (their spacing is
 //! 1 rad). Errors are not reduced modulo 2π: beyond π the fringe
 //! can be anywhere. In f64 both ways of forming the phase err by ~1e-9 rad at 1 m (the spacing
-//! of f64 at 1 m, 2.2e-16 m, is 2.5e-9 rad); fringe's differenced form keeps the phase argument
-//! small (no 1e7 rad phases to round) and stays within the issue's 1e-6 rad up to 10 m. This
+//! of f64 at 1 m, 2.2e-16 m, is 2.5e-9 rad); fringe's double-double paths, differenced before
+//! rounding, keep the phase within 1e-12 rad up to 10 m. This
 //! illustration is reported for information; only fringe's own method is judged.
 //!
 //! # When it runs
@@ -54,6 +64,7 @@
 
 use crate::analytic::plate::{Film, Pol};
 use crate::analytic::tir;
+use crate::double_double::DoubleDouble;
 use crate::fidelity::Fidelity;
 use crate::fresnel::{self, brewster_angle, critical_angle};
 use crate::material::Medium;
@@ -70,8 +81,63 @@ use std::fmt::Write as _;
 /// Vacuum wavelength of the whole sweep (m).
 pub const WAVELENGTH_M: f64 = 550e-9;
 
-/// The issue's bound on the two-beam phase error from 1 nm to 10 m (rad).
-pub const PATH_PHASE_TOLERANCE_RAD: f64 = 1e-6;
+/// The bound on fringe's two-beam phase error from 1 nm to 10 m (rad): optical paths held in
+/// double-double keep the exact path difference of the collinear sources to ~1e-30 m, so the
+/// phase is the exact one rounded once; absolute paths rounded to f64 err by ~1e-9 rad at 1 m
+/// and fail this bound from about 1 mm on ([`PathArithmetic::AbsoluteF64`]).
+pub const PATH_PHASE_TOLERANCE_RAD: f64 = 1e-12;
+
+/// The bound on the relative deviation of a traced film reflectance from the Airy sum (and of a
+/// truncated traced sum from the truncated closed form): issue #13's 1e-12.
+pub const FILM_TOLERANCE: f64 = 1e-12;
+
+/// The relative deviation of a traced film reflectance from the Airy sum that the f64 inputs
+/// allow: [`FILM_TOLERANCE`] plus the conditioning of R on its inputs. The round-trip phase
+/// β = 4π n2 d cos θ2/λ of a scene given in f64 (direction components, indices, thickness) is
+/// itself known only to a few ε·β, and the tracer carries phases in f64 cycles of the same
+/// relative rounding, which moves R by |∂R/∂β|·β·ε = |d ∂R/∂d|·ε; 16ε bounds the few roundings.
+/// Negligible for thin films, it matters for a 1 mm film near a minimum of R (β ~ 3e4 rad:
+/// ~1e-11 of R). ∂R/∂d by a central difference of the Airy sum.
+pub fn film_tolerance(film: &Film, cos_theta: f64, lambda_m: f64, pol: Pol) -> f64 {
+    let r = film.reflectance(cos_theta, lambda_m, pol);
+    let h = 1e-6;
+    let at = |s: f64| {
+        Film {
+            thickness_m: film.thickness_m * s,
+            ..*film
+        }
+        .reflectance(cos_theta, lambda_m, pol)
+    };
+    let d_dr_dd = (at(1.0 + h) - at(1.0 - h)) / (2.0 * h);
+    FILM_TOLERANCE + 16.0 * f64::EPSILON * d_dr_dd.abs() / r
+}
+
+/// How the sweep holds the traced optical paths before phases are formed.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathArithmetic {
+    /// fringe's: paths in double-double, differences formed before rounding.
+    DoubleDouble,
+    /// A deliberately naive build: every traced optical path rounded to f64 (absolute, from the
+    /// source or the wave's reference) before phases are formed, as a tracer that stores
+    /// absolute paths in f64 does. The sweep must fail it (a test keeps that true).
+    AbsoluteF64,
+}
+
+/// The arrivals as `arithmetic` holds them (rounded to absolute f64 paths for the naive build).
+fn hold(mut arr: Vec<trace::Arrival>, arithmetic: PathArithmetic) -> Vec<trace::Arrival> {
+    if arithmetic == PathArithmetic::AbsoluteF64 {
+        let round = |r: &mut crate::ray::Ray| {
+            r.optical_path = DoubleDouble::from(r.optical_path_m());
+        };
+        for a in &mut arr {
+            round(&mut a.vector);
+            if let Some(p) = &mut a.paper {
+                round(p);
+            }
+        }
+    }
+    arr
+}
 
 /// Path differences per path length in the path sweep (the worst one is reported).
 pub const PATH_OFFSETS: usize = 8;
@@ -154,7 +220,7 @@ impl StabilityRow {
 pub struct PathPoint {
     /// Optical path of the nearer beam, s (m).
     pub path_m: f64,
-    /// fringe: traced paths, differenced in metres, then 2πΔs/λ (rad).
+    /// fringe: traced paths, differenced in double-double, then 2πΔs/λ (rad).
     pub fringe_rad: f64,
     /// Phases from absolute f64 paths, 2πs2/λ − 2πs1/λ (rad).
     pub f64_absolute_rad: f64,
@@ -255,8 +321,9 @@ pub fn collinear_sources(offset_m: f64) -> Scene {
 }
 
 /// fringe's traced path difference for [`collinear_sources`] at the point (s, 0, 0): the exact
-/// difference is Δs (collinear).
-fn traced_path_difference(path_m: f64, offset_m: f64) -> f64 {
+/// difference is Δs (collinear). Formed in double-double, rounded once; with
+/// [`PathArithmetic::AbsoluteF64`] from the two paths rounded to f64 first.
+fn traced_path_difference(path_m: f64, offset_m: f64, arithmetic: PathArithmetic) -> f64 {
     let scene = collinear_sources(offset_m);
     let p = DVec3::new(path_m, 0.0, 0.0);
     let Ok(optics) = scene.optics(WAVELENGTH_M) else {
@@ -271,12 +338,16 @@ fn traced_path_difference(path_m: f64, offset_m: f64) -> f64 {
         &Target::Point(p),
         &TraceSettings::default(),
     );
+    let arr = hold(arr, arithmetic);
     let path_of = |source: usize| {
         arr.iter()
             .find(|a| a.source == source)
-            .map_or(f64::NAN, |a| a.vector.optical_path_m)
+            .map(|a| a.vector.optical_path)
     };
-    path_of(1) - path_of(0)
+    match (path_of(1), path_of(0)) {
+        (Some(a), Some(b)) => (a - b).to_f64(),
+        _ => f64::NAN,
+    }
 }
 
 /// Two-beam phase from absolute paths: each path as `store` keeps it, φ_k = (2π/λ)·s_k in f64,
@@ -291,13 +362,18 @@ fn absolute_phase_difference(path_m: f64, offset_m: f64, store: impl Fn(f64) -> 
 /// The three methods' phase errors at each path length (worst over [`PATH_OFFSETS`]). The exact
 /// phase 2πΔs/λ is rounded once (relative 1e-16), orders of magnitude below every error shown.
 pub fn path_points(paths_m: &[f64]) -> Vec<PathPoint> {
+    path_points_with(paths_m, PathArithmetic::DoubleDouble)
+}
+
+/// [`path_points`] with the traced paths held as `arithmetic` says.
+pub fn path_points_with(paths_m: &[f64], arithmetic: PathArithmetic) -> Vec<PathPoint> {
     paths_m
         .iter()
         .map(|&s| {
             let mut worst = [(f64::NEG_INFINITY, 0.0, 0.0); 3];
             for ds in path_offsets(s) {
                 let exact = TAU * ds / WAVELENGTH_M;
-                let traced = traced_path_difference(s, ds);
+                let traced = traced_path_difference(s, ds, arithmetic);
                 // Differences in metres first: |Δs_traced − Δs| is exact for nearby values.
                 let fringe_err = TAU * (traced - ds).abs() / WAVELENGTH_M;
                 let fringe_phase = TAU * traced / WAVELENGTH_M;
@@ -337,12 +413,13 @@ fn pol_angle(pol: Pol) -> f64 {
     }
 }
 
-fn plane_wave(theta: f64, angle_rad: f64) -> Source {
+/// The plane wave of the sweep at `theta` in the xz plane, phase referred to `reference`.
+fn plane_wave_at(theta: f64, angle_rad: f64, reference: DVec3) -> Source {
     Source {
         name: "beam".into(),
         emitter: Emitter::PlaneWave {
             direction: DVec3::new(theta.sin(), 0.0, -theta.cos()),
-            reference_point: DVec3::new(0.0, 0.0, 1e-3),
+            reference_point: reference,
         },
         polarization: Polarization::Linear {
             reference: DVec3::Y,
@@ -353,6 +430,14 @@ fn plane_wave(theta: f64, angle_rad: f64) -> Source {
         coherence_length_m: f64::INFINITY,
     }
 }
+
+/// [`plane_wave_at`] with the reference 1 mm above the interface.
+fn plane_wave(theta: f64, angle_rad: f64) -> Source {
+    plane_wave_at(theta, angle_rad, DEFAULT_REFERENCE)
+}
+
+/// The sweep's default phase reference of a plane wave: 1 mm above the film.
+const DEFAULT_REFERENCE: DVec3 = DVec3::new(0.0, 0.0, 1e-3);
 
 /// The traced reflection amplitude r_s or r_p of one unbounded interface n1 | n2 (the plane
 /// z = 0, n1 above) for a plane wave at angle θ, read from the traced 3D field in the frame of
@@ -435,6 +520,31 @@ pub fn traced_film(
     internal: usize,
     reflected: bool,
 ) -> f64 {
+    traced_film_with(
+        n,
+        d,
+        theta,
+        (lambda_m, pol_angle),
+        internal,
+        reflected,
+        DEFAULT_REFERENCE,
+        PathArithmetic::DoubleDouble,
+    )
+}
+
+/// [`traced_film`] with the plane wave's phase (and far-field wavefront) referred to
+/// `reference` and the traced paths held as `arithmetic` says; `(λ, polarization angle)`.
+#[allow(clippy::too_many_arguments)]
+pub fn traced_film_with(
+    n: [f64; 3],
+    d: f64,
+    theta: f64,
+    (lambda_m, pol_angle): (f64, f64),
+    internal: usize,
+    reflected: bool,
+    reference: DVec3,
+    arithmetic: PathArithmetic,
+) -> f64 {
     let mut scene = Scene::new(Medium::constant("n1", n[0]));
     scene.add_plate(
         "film",
@@ -445,7 +555,9 @@ pub fn traced_film(
         Medium::constant("n2", n[1]),
         Medium::constant("n3", n[2]),
     );
-    scene.sources.push(plane_wave(theta, pol_angle));
+    scene
+        .sources
+        .push(plane_wave_at(theta, pol_angle, reference));
     let Ok(optics) = scene.optics(lambda_m) else {
         return f64::NAN;
     };
@@ -458,7 +570,6 @@ pub fn traced_film(
             None => return f64::NAN,
         }
     };
-    let reference = DVec3::new(0.0, 0.0, 1e-3);
     let target = Target::Direction { dir, reference };
     let limits = EnumerationLimits {
         max_internal_reflections: internal,
@@ -470,7 +581,7 @@ pub fn traced_film(
         ..Default::default()
     };
     let (arr, _) = trace::arrivals(&scene, &optics, &plan, &target, &st);
-    let i = trace::intensity(&arr, Fidelity::Vector);
+    let i = trace::intensity(&hold(arr, arithmetic), Fidelity::Vector);
     if reflected {
         i
     } else {
@@ -698,39 +809,125 @@ fn index_rows(rows: &mut Vec<StabilityRow>) {
     }
 }
 
-/// Films 0.1 nm … 1 mm (air | 1.5 | 1.33) at 0 and 1 rad against Airy, and R + T = 1.
-fn film_rows(rows: &mut Vec<StabilityRow>) {
+/// The internal reflections that bring the Airy tail of `film` at `theta` below 1e-15 for
+/// both polarizations (2 per reflected order, plus one), at most the case cap 2000 + 1.
+fn internal_for(film: &Film, theta: f64) -> usize {
+    let orders = [Pol::S, Pol::P]
+        .into_iter()
+        .map(|p| film.orders_for_bound(theta.cos(), WAVELENGTH_M, p, 1e-15))
+        .max()
+        .unwrap_or(1);
+    (2 * orders + 1).min(2001)
+}
+
+/// Films 1 pm … 1 mm (air | 1.5 | 1.33) at 0, 1 rad and 89.9° (grazing) against Airy, bounce
+/// counts from the tail bound; the 1 µm film with the wave's phase reference 100 m away (a
+/// global phase, it must cancel); and R → the bare interface's value as d → 0.
+fn film_rows(rows: &mut Vec<StabilityRow>, arithmetic: PathArithmetic) {
     let g = "films";
     let n = [1.0, 1.5, 1.33];
-    for d in [1e-10, 1e-8, 1e-6, 1e-3] {
-        let film = Film {
-            n1: n[0],
-            n2: n[1],
-            n3: n[2],
-            thickness_m: d,
-        };
-        for theta in [0.0f64, 1.0] {
+    let film_of = |d: f64| Film {
+        n1: n[0],
+        n2: n[1],
+        n3: n[2],
+        thickness_m: d,
+    };
+    let grazing = 89.9f64.to_radians();
+    for d in [1e-12, 1e-10, 1e-8, 1e-6, 1e-3] {
+        let film = film_of(d);
+        for (theta, angle) in [(0.0f64, "0"), (1.0, "1 rad"), (grazing, "89.9°")] {
+            let internal = internal_for(&film, theta);
             for pol in [Pol::S, Pol::P] {
                 rows.push(StabilityRow::new(
                     g,
                     format!(
-                        "d = {d:.0e} m, θ = {theta} rad, {}, 1 | 1.5 | 1.33, 15 internal reflections",
+                        "d = {d:.0e} m, θ = {angle}, {}, 1 | 1.5 | 1.33, {internal} internal reflections (tail < 1e-15)",
                         pol_name(pol)
                     ),
                     "R (Airy)",
-                    traced_film(n, d, theta, WAVELENGTH_M, pol_angle(pol), 15, true),
+                    traced_film_with(
+                        n,
+                        d,
+                        theta,
+                        (WAVELENGTH_M, pol_angle(pol)),
+                        internal,
+                        true,
+                        DEFAULT_REFERENCE,
+                        arithmetic,
+                    ),
                     film.reflectance(theta.cos(), WAVELENGTH_M, pol),
                     DeviationKind::Relative,
-                    Some(1e-9),
+                    Some(film_tolerance(&film, theta.cos(), WAVELENGTH_M, pol)),
                 ));
             }
         }
     }
+    // A global phase: the wave's reference point 100 m above the film.
+    let (d, theta) = (1e-6, 80f64.to_radians());
+    let film = film_of(d);
+    let internal = internal_for(&film, theta);
+    for (z, label) in [(1e-3, "1 mm"), (100.0, "100 m")] {
+        rows.push(StabilityRow::new(
+            g,
+            format!(
+                "d = 1 µm, θ = 80°, s, reference point of the wave {label} above the film (a global phase)"
+            ),
+            "R (Airy)",
+            traced_film_with(
+                n,
+                d,
+                theta,
+                (WAVELENGTH_M, pol_angle(Pol::S)),
+                internal,
+                true,
+                DVec3::new(0.0, 0.0, z),
+                arithmetic,
+            ),
+            film.reflectance(theta.cos(), WAVELENGTH_M, Pol::S),
+            DeviationKind::Relative,
+            Some(film_tolerance(&film, theta.cos(), WAVELENGTH_M, Pol::S)),
+        ));
+    }
+    // d → 0: the 1 pm film's R tends to the bare 1 | 1.33 interface's, with the first-order
+    // slope of the Airy sum: |R(1 pm) − R(0)| is O(d/λ), far above rounding, and
+    // R(1 pm) − R_bare agrees with the Airy difference (continuity, no film that vanishes).
+    let theta: f64 = 0.5;
+    let bare = {
+        let r0 = Film {
+            n1: n[0],
+            n2: n[2],
+            n3: n[2],
+            thickness_m: 0.0,
+        };
+        r0.reflectance(theta.cos(), WAVELENGTH_M, Pol::S)
+    };
+    let film = film_of(1e-12);
+    let traced = traced_film_with(
+        n,
+        1e-12,
+        theta,
+        (WAVELENGTH_M, pol_angle(Pol::S)),
+        internal_for(&film, theta),
+        true,
+        DEFAULT_REFERENCE,
+        arithmetic,
+    );
+    rows.push(StabilityRow::new(
+        g,
+        "d = 1 pm vs d = 0, θ = 0.5 rad, s: R(1 pm) − R(bare 1 | 1.33 interface)".to_string(),
+        "ΔR (Airy)",
+        traced - bare,
+        film.reflectance(theta.cos(), WAVELENGTH_M, Pol::S) - bare,
+        DeviationKind::Relative,
+        Some(1e-6),
+    ));
 }
 
-/// High finesse: 1 | 1.5 | 1 film, 1 µm, 85°, s: the truncated traced sum never deviates from
-/// Airy by more than the tail bound 2|r|τ + τ² (τ the amplitude tail after N orders).
-fn finesse_rows(rows: &mut Vec<StabilityRow>) {
+/// High finesse: 1 | 1.5 | 1 film, 1 µm, 85°, s: the traced sum truncated after N reflected
+/// orders against the closed-form truncated sum (`Film::r_truncated`, the geometric series
+/// summed independently) at 1e-12 relative, and the tail bound checked for honesty: the
+/// truncated closed form's distance to the full Airy sum never exceeds 2|r|τ + τ².
+fn finesse_rows(rows: &mut Vec<StabilityRow>, arithmetic: PathArithmetic) {
     let g = "finesse";
     let film = Film {
         n1: 1.0,
@@ -742,35 +939,63 @@ fn finesse_rows(rows: &mut Vec<StabilityRow>) {
     let c = theta.cos();
     let r = film.r(c, WAVELENGTH_M, Pol::S).norm();
     let exact = r * r;
-    let auto = film.orders_for_bound(c, WAVELENGTH_M, Pol::S, 1e-12);
+    let auto = film.orders_for_bound(c, WAVELENGTH_M, Pol::S, 1e-15);
     for orders in [2usize, 5, 10, 20, 40, auto] {
-        let tau = film.r_tail_bound(c, WAVELENGTH_M, Pol::S, orders);
-        let (tol, how) = if orders == auto {
-            (1e-11, "orders from the tail bound ε = 1e-12".to_string())
-        } else {
-            (
-                (2.0 * r * tau + tau * tau) * (1.0 + 1e-9) + 1e-15,
-                "tolerance = tail bound 2|r|τ + τ²".to_string(),
-            )
-        };
+        // 2N − 1 internal reflections reach reflected order N (N round trips): N + 1 beams
+        // with order 0, the top face's reflection.
+        let beams = orders + 1;
+        let truncated = film.r_truncated(c, WAVELENGTH_M, Pol::S, beams).norm_sqr();
+        let traced = traced_film_with(
+            [1.0, 1.5, 1.0],
+            1e-6,
+            theta,
+            (WAVELENGTH_M, 0.0),
+            2 * orders - 1,
+            true,
+            DEFAULT_REFERENCE,
+            arithmetic,
+        );
         rows.push(StabilityRow::new(
             g,
-            format!("1 | 1.5 | 1, d = 1 µm, θ = 85°, s, N = {orders} orders; {how}"),
-            "R truncated vs Airy",
-            traced_film(
-                [1.0, 1.5, 1.0],
-                1e-6,
-                theta,
-                WAVELENGTH_M,
-                0.0,
-                2 * orders - 1,
-                true,
+            format!("1 | 1.5 | 1, d = 1 µm, θ = 85°, s, orders 0 to N = {orders}"),
+            "R truncated (closed-form partial sum)",
+            traced,
+            truncated,
+            DeviationKind::Relative,
+            Some(FILM_TOLERANCE),
+        ));
+        let tau = film.r_tail_bound(c, WAVELENGTH_M, Pol::S, beams);
+        let bound = 2.0 * r * tau + tau * tau;
+        rows.push(StabilityRow::new(
+            g,
+            format!(
+                "orders 0 to N = {orders}: |R_N − R| ≤ tail bound 2|r|τ + τ² = {bound:.3e} (closed forms)"
             ),
-            exact,
+            "R_N − R vs tail bound",
+            (truncated - exact).abs(),
+            0.0,
             DeviationKind::Absolute,
-            Some(tol),
+            Some(bound * (1.0 + 1e-9) + 1e-16),
         ));
     }
+    rows.push(StabilityRow::new(
+        g,
+        format!("N = {auto} orders (tail bound < 1e-15): traced R against the full Airy sum"),
+        "R (Airy)",
+        traced_film_with(
+            [1.0, 1.5, 1.0],
+            1e-6,
+            theta,
+            (WAVELENGTH_M, 0.0),
+            2 * auto - 1,
+            true,
+            DEFAULT_REFERENCE,
+            arithmetic,
+        ),
+        exact,
+        DeviationKind::Relative,
+        Some(FILM_TOLERANCE),
+    ));
 }
 
 /// A small deterministic generator (SplitMix64) for the random films.
@@ -792,7 +1017,7 @@ impl SplitMix {
 
 /// Seeded random valid films: every traced R, T finite and R + T = 1 with the bounce count
 /// from the Airy tail bound (the proptest of tests/suite/stability.rs, as one row).
-fn random_film_rows(rows: &mut Vec<StabilityRow>) {
+fn random_film_rows(rows: &mut Vec<StabilityRow>, arithmetic: PathArithmetic) {
     const SCENES: usize = 32;
     let mut rng = SplitMix(6);
     let mut worst = 0.0f64;
@@ -815,7 +1040,19 @@ fn random_film_rows(rows: &mut Vec<StabilityRow>) {
             .max()
             .unwrap_or(1);
         let internal = (2 * orders + 1).min(2001);
-        let r = traced_film([1.0, n2, n3], d, theta, WAVELENGTH_M, pol, internal, true);
+        let trace = |reflected| {
+            traced_film_with(
+                [1.0, n2, n3],
+                d,
+                theta,
+                (WAVELENGTH_M, pol),
+                internal,
+                reflected,
+                DEFAULT_REFERENCE,
+                arithmetic,
+            )
+        };
+        let r = trace(true);
         let transmits = fresnel::refract(
             DVec3::new(theta.sin(), 0.0, -theta.cos()),
             DVec3::Z,
@@ -823,11 +1060,7 @@ fn random_film_rows(rows: &mut Vec<StabilityRow>) {
             n3,
         )
         .is_some();
-        let t = if transmits {
-            traced_film([1.0, n2, n3], d, theta, WAVELENGTH_M, pol, internal, false)
-        } else {
-            0.0
-        };
+        let t = if transmits { trace(false) } else { 0.0 };
         // A NaN anywhere makes the sum NaN, and NaN is the worst value.
         let dev = (r + t - 1.0).abs();
         if dev.is_nan() || dev > worst || worst_at.is_empty() {
@@ -871,7 +1104,7 @@ fn length_label(m: f64) -> String {
 
 /// Rows of the path sweep at whole decades: fringe judged, the two absolute-phase variants
 /// for information.
-fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint]) {
+fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint], arithmetic: PathArithmetic) {
     for p in points {
         let mantissa = p.path_m / 10f64.powf(p.path_m.log10().round());
         if (mantissa - 1.0).abs() > 1e-9 {
@@ -889,7 +1122,12 @@ fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint]) {
         let q = format!("two-beam phase 2πΔs/λ (rad), worst of {PATH_OFFSETS} Δs");
         rows.push(StabilityRow::new(
             "paths",
-            cond("fringe: traced, paths differenced in metres (f64)"),
+            cond(match arithmetic {
+                PathArithmetic::DoubleDouble => {
+                    "fringe: traced, paths differenced in double-double"
+                }
+                PathArithmetic::AbsoluteF64 => "naive build: traced, absolute paths rounded to f64",
+            }),
             &q,
             p.fringe_worst.0,
             p.fringe_worst.1,
@@ -918,16 +1156,22 @@ fn path_rows(rows: &mut Vec<StabilityRow>, points: &[PathPoint]) {
 
 /// Run the whole sweep.
 pub fn sweep() -> Sweep {
+    sweep_with(PathArithmetic::DoubleDouble)
+}
+
+/// The sweep with the traced paths held as `arithmetic` says: fringe's double-double, or the
+/// deliberately naive absolute f64 paths that it must fail.
+pub fn sweep_with(arithmetic: PathArithmetic) -> Sweep {
     let start = std::time::Instant::now();
     let mut rows = Vec::new();
     incidence_rows(&mut rows);
     critical_rows(&mut rows);
     index_rows(&mut rows);
-    film_rows(&mut rows);
-    finesse_rows(&mut rows);
-    random_film_rows(&mut rows);
-    let paths = path_points(&path_grid());
-    path_rows(&mut rows, &paths);
+    film_rows(&mut rows, arithmetic);
+    finesse_rows(&mut rows, arithmetic);
+    random_film_rows(&mut rows, arithmetic);
+    let paths = path_points_with(&path_grid(), arithmetic);
+    path_rows(&mut rows, &paths, arithmetic);
     Sweep {
         rows,
         paths,

@@ -8,6 +8,7 @@
 //! other source and target solves each sequence on its own.
 
 use crate::accumulate::{Accumulator, Contribution};
+use crate::double_double::{DoubleDouble, projection};
 use crate::fidelity::{Fidelity, SceneNeeds};
 use crate::interaction::{
     CoefficientModel, InterfaceHit, JonesFrame, interact_along, interact_along_in_place,
@@ -151,6 +152,20 @@ fn launch_ray_with(
     ray
 }
 
+/// Give a just-launched `ray` the optical path `start` already travelled at its launch point
+/// (a plane wave launched off its reference wavefront, [`path::plane_wave_launch`]), with a
+/// ledger entry for it; nothing for a start of 0.
+#[inline]
+fn start_at(ray: &mut Ray, start: DoubleDouble) {
+    if start != DoubleDouble::ZERO {
+        ray.optical_path = start;
+        ray.ledger.entries.push(LedgerEntry::Path {
+            index: ray.index,
+            length_m: start.to_f64() / ray.index,
+        });
+    }
+}
+
 /// Where a solved path starts: its launch point, launch direction and spreading S².
 fn launch_of(path: &SolvedPath) -> (DVec3, DVec3, f64) {
     (path.points[0], path.dirs[0], path.spreading)
@@ -165,7 +180,7 @@ fn launch_ray(
 ) -> Ray {
     let d0 = path.dirs[0];
     let e_ref = field_reference(channel.reference, d0);
-    launch_ray_with(
+    let mut ray = launch_ray_with(
         optics,
         channel,
         coherence_length_m,
@@ -173,7 +188,9 @@ fn launch_ray(
         d0.normalize(),
         e_ref,
         Trail::with_capacity(ledger_capacity(path)),
-    )
+    );
+    start_at(&mut ray, path.start_optical_path);
+    ray
 }
 
 /// The interface met by event `ev` at `point`.
@@ -204,19 +221,21 @@ fn events_of(path: &SolvedPath) -> impl Iterator<Item = (Event, DVec3)> + '_ {
 fn end_ray(ray: &mut Ray, target: &Target, coherence_length_m: f64) {
     match target {
         Target::Point(p) => ray.advance_to(*p),
-        Target::Direction { reference, .. } => {
-            // Projection onto the far-field wavefront through `reference`.
-            let proj = -ray.dir.dot(ray.origin - *reference);
-            ray.optical_path_m += ray.index * proj;
+        Target::Direction { reference, dir } => {
+            // Projection onto the far-field wavefront through `reference` perpendicular to the
+            // target direction, −d·(x − reference), in double-double (a reference 100 m away
+            // keeps the path's digits; `path::to_far_wavefront` says why the target's d).
+            let proj = -projection(dir.normalize(), ray.origin, *reference);
+            ray.optical_path += proj.mul_f64(ray.index);
             ray.ledger.entries.push(LedgerEntry::Path {
                 index: ray.index,
-                length_m: proj,
+                length_m: proj.to_f64(),
             });
         }
     }
     // The paper's coherence-length rule (P9): a ray whose own path exceeds the source's
     // coherence length loses coherence.
-    if ray.optical_path_m > coherence_length_m && ray.coherence_id != INCOHERENT {
+    if ray.optical_path_m() > coherence_length_m && ray.coherence_id != INCOHERENT {
         ray.coherence_id = INCOHERENT;
         ray.ledger
             .entries
@@ -225,9 +244,10 @@ fn end_ray(ray: &mut Ray, target: &Target, coherence_length_m: f64) {
 }
 
 /// Per event a path, an interaction and perhaps a coherence loss; then the last path and
-/// perhaps the coherence-length loss.
+/// perhaps the coherence-length loss; and perhaps the start of a plane wave launched off its
+/// reference wavefront.
 fn ledger_capacity(path: &SolvedPath) -> usize {
-    3 * path.sequence.len() + 2
+    3 * path.sequence.len() + 3
 }
 
 /// Carry a channel's ray along a solved path through the real interactions.
@@ -280,6 +300,7 @@ impl ChannelRays {
         channels: &[Channel],
         coherence_length_m: f64,
         start: (DVec3, DVec3, f64),
+        start_path: DoubleDouble,
         ledger: impl Fn() -> Trail<LedgerEntry>,
     ) -> ChannelRays {
         let d0 = start.1;
@@ -296,7 +317,10 @@ impl ChannelRays {
         {
             let alone = |ch: &Channel| {
                 let e = field_reference(ch.reference, d0);
-                launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger())
+                let mut ray =
+                    launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger());
+                start_at(&mut ray, start_path);
+                ray
             };
             return ChannelRays::Apart(channels.iter().map(alone).collect());
         }
@@ -317,10 +341,9 @@ impl ChannelRays {
         for (f, ch) in frames.iter_mut().zip(rest) {
             *f = JonesFrame::of(&launch(ch, Trail::new()));
         }
-        ChannelRays::Together {
-            lead: launch(last, ledger()),
-            frames,
-        }
+        let mut lead = launch(last, ledger());
+        start_at(&mut lead, start_path);
+        ChannelRays::Together { lead, frames }
     }
 
     /// Through the interaction at `hit` along the followed branch (`reflect`: the reflected
@@ -394,6 +417,7 @@ fn carry(
         channels,
         coherence_length_m,
         launch_of(path),
+        path.start_optical_path,
         || Trail::with_capacity(capacity),
     );
     let others = channels.len().saturating_sub(1);
@@ -583,6 +607,7 @@ fn far_field_walk(
         out.channels,
         out.coherence_length_m,
         paths.launch(),
+        paths.start_optical_path(),
         Trail::shared,
     );
     let mut rays = vec![vec![launched]; models.len()];
@@ -646,11 +671,12 @@ pub const PAPER_MISSING: &str =
     "paper_rules asked of an arrival traced without the paper's rules (trace::arrivals_with)";
 
 /// The accumulation-core contribution of an arrival at a rung of the ladder, with its path
-/// phase measured from the optical path `reference_m` (m): path differences are formed in
-/// metres before dividing by λ, so metre-long paths keep their phase differences to ~1e-17 m.
-pub fn contribution_from(a: &Arrival, level: Fidelity, reference_m: f64) -> Contribution {
+/// phase measured from the optical path `reference` (m, double-double): the difference is
+/// formed in double-double and only then rounded and divided by λ, so a path of any length
+/// keeps its phase relative to the reference to ~1e-16 of the difference (docs/PHYSICS.md §1).
+pub fn contribution_from(a: &Arrival, level: Fidelity, reference: DoubleDouble) -> Contribution {
     let v = &a.vector;
-    let cycles = |r: &Ray| (r.optical_path_m - reference_m) / r.wavelength_m;
+    let cycles = |r: &Ray| (r.optical_path - reference).to_f64() / r.wavelength_m;
     let scalar = |extra_cycles: f64| Contribution {
         coherence_id: v.coherence_id,
         phase_cycles: cycles(v) + extra_cycles,
@@ -685,16 +711,18 @@ pub fn contribution_from(a: &Arrival, level: Fidelity, reference_m: f64) -> Cont
 
 /// [`contribution_from`] with the absolute optical path (phase referred to the source).
 pub fn contribution(a: &Arrival, level: Fidelity) -> Contribution {
-    contribution_from(a, level, 0.0)
+    contribution_from(a, level, DoubleDouble::ZERO)
 }
 
 /// The contributions of all arrivals at one point, phases referred to the first arrival's
 /// optical path (a common phase does not change any intensity).
 pub fn contributions(arrivals: &[Arrival], level: Fidelity) -> Vec<Contribution> {
-    let reference_m = arrivals.first().map_or(0.0, |a| a.vector.optical_path_m);
+    let reference = arrivals
+        .first()
+        .map_or(DoubleDouble::ZERO, |a| a.vector.optical_path);
     arrivals
         .iter()
-        .map(|a| contribution_from(a, level, reference_m))
+        .map(|a| contribution_from(a, level, reference))
         .collect()
 }
 

@@ -582,7 +582,7 @@ fn michelson(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, Strin
     let x0 = u * d.real(0.0, 0.25);
     let x1 = x0 + u * d.log(1e-4, 0.25);
     let h = std::f64::consts::FRAC_1_SQRT_2;
-    // Rays of both arms through the pinhole plane x = xh (mirror images, PHYSICS.md §5).
+    // Rays of both arms through the pinhole plane x = xh (mirror images, docs/PHYSICS.md §5).
     let reflect = |p: DVec3, q: DVec3, n: DVec3| p - 2.0 * (p - q).dot(n) * n;
     let turn = |v: DVec3, n: DVec3| v - 2.0 * v.dot(n) * n;
     let (nb, n1, n2) = (

@@ -20,7 +20,7 @@ use serde_json::json;
 use std::fmt::Write as _;
 use std::path::{Path, PathBuf};
 
-/// The conventions another tracer must follow (PHYSICS.md §1), as written into every pack.
+/// The conventions another tracer must follow (docs/PHYSICS.md §1), as written into every pack.
 pub fn conventions() -> serde_json::Value {
     json!({
         "time_dependence": "e^{-iωt}",

@@ -21,7 +21,7 @@ use crate::case::reference::MetricKind;
 use crate::case::run::CaseResult;
 use crate::case::spec::{FarSide, Observer, Probe, SweepParameter};
 
-/// What a probe measures (PHYSICS.md §3a), named once for packs, value files and reports.
+/// What a probe measures (docs/PHYSICS.md §3a), named once for packs, value files and reports.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Observable {
     /// Power reflectance R = |r|² of a plane wave, observed in the reflected far field.
@@ -95,16 +95,16 @@ impl Observable {
     pub fn definition(self) -> &'static str {
         match self {
             Observable::Reflectance => {
-                "power reflectance R = |r|² of the plane wave (PHYSICS.md §3a), every reflected order summed coherently, weighted over the spectral samples"
+                "power reflectance R = |r|² of the plane wave (docs/PHYSICS.md §3a), every reflected order summed coherently, weighted over the spectral samples"
             }
             Observable::Transmittance => {
-                "power transmittance T = (n_out cos θ_out)/(n_in cos θ_in)·|t|² of the plane wave (PHYSICS.md §3a), weighted over the spectral samples"
+                "power transmittance T = (n_out cos θ_out)/(n_in cos θ_in)·|t|² of the plane wave (docs/PHYSICS.md §3a), weighted over the spectral samples"
             }
             Observable::FieldIntensity => {
                 "field intensity I = Σ_groups |Σ_j E_j e^{iφ_j}|² (paper eqs. 5–6), φ = 2π s/λ for optical path s, in units of the source's |E|², weighted over the spectral samples"
             }
             Observable::Retardance => {
-                "arg E_p − arg E_s of the summed field, s = d_in × N normalised at the named surface, p = d_out × s (PHYSICS.md §1)"
+                "arg E_p − arg E_s of the summed field, s = d_in × N normalised at the named surface, p = d_out × s (docs/PHYSICS.md §1)"
             }
             Observable::Visibility => {
                 "two-beam visibility 2√(I1 I2)/(I1 + I2) of the two mutually coherent arrivals"

@@ -15,7 +15,7 @@
 //! C0 = R12 + R_s,   R_s = T121² R23/(1 − R12 R23),   C_m = (R_s − T121) (R12 R23)^{m/2}   (BB1)
 //! ```
 //!
-//! (Belcour & Barla eqs. 6–9; ψ is the phase of r21 r23 e^{iβ} of PHYSICS.md §5, β = 2π OPD/λ,
+//! (Belcour & Barla eqs. 6–9; ψ is the phase of r21 r23 e^{iβ} of docs/PHYSICS.md §5, β = 2π OPD/λ,
 //! so the full series equals |r|² of the Airy sum: [`reflectance`] with many orders is a check
 //! of the exact closed form.) The model keeps [`ORDERS`] = 3 orders (the paper's code; the glTF
 //! sample code keeps 2).

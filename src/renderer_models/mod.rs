@@ -1,10 +1,10 @@
 //! The thin-layer models production renderers ship, written from their published formulas and
-//! measured against the exact Airy sum of [`crate::analytic::plate`] (PHYSICS.md §5).
+//! measured against the exact Airy sum of [`crate::analytic::plate`] (docs/PHYSICS.md §5).
 //!
 //! Every model here takes the same three-medium stack as the exact closed form, a
 //! [`Film`] n1 | n2 (thickness d) | n3 lit from n1 at cos θ1, and returns the **power
-//! reflectance** R (dimensionless, the observable of PHYSICS.md §3a for a plane wave observed in
-//! the far field) of unpolarized light, or its colour. Conventions are the crate's (PHYSICS.md
+//! reflectance** R (dimensionless, the observable of docs/PHYSICS.md §3a for a plane wave observed in
+//! the far field) of unpolarized light, or its colour. Conventions are the crate's (docs/PHYSICS.md
 //! §1): time dependence e^{-iωt}, phase e^{+iβ} for the round trip β = (4π/λ) n2 d cos θ2,
 //! Fresnel amplitudes (P1)–(P6) in the s/p frame of `src/fresnel.rs`; wavelengths in metres.
 //!
@@ -75,7 +75,7 @@ impl Model {
     }
 }
 
-/// Exact unpolarized reflectance ½(R_s + R_p) of the Airy sum (PHYSICS.md §5).
+/// Exact unpolarized reflectance ½(R_s + R_p) of the Airy sum (docs/PHYSICS.md §5).
 pub fn exact_reflectance(film: &Film, cos_theta_1: f64, lambda_m: f64) -> f64 {
     0.5 * (film.reflectance(cos_theta_1, lambda_m, Pol::S)
         + film.reflectance(cos_theta_1, lambda_m, Pol::P))

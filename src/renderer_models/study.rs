@@ -3,7 +3,7 @@
 //! and seen from a denser medium (where the back face totally reflects), and the colour of each
 //! under D65 against the exact colour as CIEDE2000 ΔE00.
 //!
-//! Quantities: R is the unpolarized power reflectance ½(R_s + R_p) (dimensionless, PHYSICS.md
+//! Quantities: R is the unpolarized power reflectance ½(R_s + R_p) (dimensionless, docs/PHYSICS.md
 //! §3a); |ΔR| is the largest difference over the wavelengths 360–830 nm at 1 nm; colours are CIE
 //! 1931 XYZ of R(λ) under D65 with Y = 1 for a perfect reflector (`src/colour.rs`, C1), ΔE00
 //! relative to the D65 white; retardance is arg r_p − arg r_s of the reflected wave at 550 nm.

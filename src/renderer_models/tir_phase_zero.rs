@@ -3,7 +3,7 @@
 //! the real Fresnel coefficient and, under total internal reflection at the film's back face,
 //! keeps |r23| = 1 with no phase.
 //!
-//! The exact amplitude is the Airy sum of PHYSICS.md §5,
+//! The exact amplitude is the Airy sum of docs/PHYSICS.md §5,
 //! r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}), with r23 of (P5)/(P6) under TIR; this
 //! variant replaces r23 by |r23| = 1 when the 2→3 face totally reflects and is exact otherwise.
 //! Under TIR at the back face no power leaves through it, so |r| = 1 for any phase of r23: the

@@ -258,8 +258,8 @@ fn traced(
             .expect("every arrival follows a listed sequence");
         let op = expected_op(order);
         for (what, got) in [
-            ("solver", a.path.optical_path_m),
-            ("ray", a.vector.optical_path_m),
+            ("solver", a.path.optical_path_m()),
+            ("ray", a.vector.optical_path_m()),
         ] {
             let err = (got - op).abs();
             assert!(

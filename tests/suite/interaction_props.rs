@@ -44,7 +44,7 @@ fn make_ray(
         coherence_id: id,
         coherence_length_m: f64::INFINITY,
         jones,
-        optical_path_m: 0.0,
+        optical_path: fringe::double_double::DoubleDouble::ZERO,
         index,
         ledger: PhaseLedger::default(),
     }
@@ -395,10 +395,10 @@ proptest! {
                 _ => ch.reflected,
             };
             let sum = ray.ledger.optical_path_m();
-            let err = (sum - ray.optical_path_m).abs();
-            prop_assert!(err <= 1e-15 * ray.optical_path_m.max(1.0), "ledger Σ nL: actual {sum:e}, expected optical_path_m {:e}, err {err:e}", ray.optical_path_m);
-            let err = (ray.optical_path_m - expected).abs();
-            prop_assert!(err <= 1e-14 * expected.max(1e-300), "optical path: actual {:e}, expected Σ n·|Δx| {expected:e}, err {err:e}", ray.optical_path_m);
+            let err = (sum - ray.optical_path_m()).abs();
+            prop_assert!(err <= 1e-15 * ray.optical_path_m().max(1.0), "ledger Σ nL: actual {sum:e}, expected optical_path_m {:e}, err {err:e}", ray.optical_path_m());
+            let err = (ray.optical_path_m() - expected).abs();
+            prop_assert!(err <= 1e-14 * expected.max(1e-300), "optical path: actual {:e}, expected Σ n·|Δx| {expected:e}, err {err:e}", ray.optical_path_m());
         }
     }
 }

@@ -24,6 +24,7 @@ mod golden_reproducibility;
 mod grade;
 mod input_classes;
 mod interaction_props;
+mod invariance;
 mod material;
 mod output_safety;
 mod path_solver;

@@ -258,8 +258,8 @@ proptest! {
                 layers.push((p.n_p, 2.0 * k as f64 * p.d));
             }
             let expected = layered_optical_path(&layers, lat);
-            let err = (sol.optical_path_m - expected).abs();
-            prop_assert!(err <= 1e-12 * expected, "order {k}: optical path actual {:e}, expected (1-D) {expected:e}, err {err:e}", sol.optical_path_m);
+            let err = (sol.optical_path_m() - expected).abs();
+            prop_assert!(err <= 1e-12 * expected, "order {k}: optical path actual {:e}, expected (1-D) {expected:e}, err {err:e}", sol.optical_path_m());
         }
     }
 
@@ -278,8 +278,8 @@ proptest! {
             .map_err(|e| TestCaseError::fail(format!("solver failed: {e}")))?;
         let s_img = s - 2.0 * (s - p.t0).dot(p.n) * p.n;
         let expected = p.n_a * (target - s_img).length();
-        let err = (sol.optical_path_m - expected).abs();
-        prop_assert!(err <= 1e-12 * expected, "optical path actual {:e}, expected n|P − S'| {expected:e}, err {err:e}", sol.optical_path_m);
+        let err = (sol.optical_path_m() - expected).abs();
+        prop_assert!(err <= 1e-12 * expected, "optical path actual {:e}, expected n|P − S'| {expected:e}, err {err:e}", sol.optical_path_m());
         let x_exp = s_img + (hs / (hs + hp)) * (target - s_img);
         let e = (sol.points[1] - x_exp).length();
         let scale = p.scene_size(s, target);
@@ -304,8 +304,8 @@ proptest! {
         check_landing(&p, s, target, &seq, &sol, scale)?;
         let lat = ((a2 - a1).powi(2) + (b2 - b1).powi(2)).sqrt();
         let expected = layered_optical_path(&[(p.n_a, hs), (p.n_p, p.d), (p.n_b, hp)], lat);
-        let err = (sol.optical_path_m - expected).abs();
-        prop_assert!(err <= 1e-12 * expected, "optical path actual {:e}, expected (1-D) {expected:e}, err {err:e}", sol.optical_path_m);
+        let err = (sol.optical_path_m() - expected).abs();
+        prop_assert!(err <= 1e-12 * expected, "optical path actual {:e}, expected (1-D) {expected:e}, err {err:e}", sol.optical_path_m());
     }
 }
 
@@ -421,11 +421,11 @@ fn shields_block_and_apertures_pass() {
                     panic!("{name} (mirror {mirror}): expected a path, got error {e}")
                 });
                 let expected = 0.08f64.sqrt();
-                let err = (sol.optical_path_m - expected).abs();
+                let err = (sol.optical_path_m() - expected).abs();
                 assert!(
                     err <= 1e-12 * expected,
                     "{name}: optical path actual {:e}, expected {expected:e}, err {err:e}",
-                    sol.optical_path_m
+                    sol.optical_path_m()
                 );
             }
         }
@@ -517,11 +517,11 @@ fn refracted_path_from_dense_medium_is_found() {
         let expected = layered_optical_path(&[(1.5, 1.0), (1.0, depth)], lat);
         match r {
             Ok(sol) => {
-                let err = (sol.optical_path_m - expected).abs();
+                let err = (sol.optical_path_m() - expected).abs();
                 assert!(
                     err <= 1e-12 * expected,
                     "lateral {lat}: optical path actual {:e}, expected {expected:e}, err {err:e}",
-                    sol.optical_path_m
+                    sol.optical_path_m()
                 );
             }
             Err(e) => failures.push(format!(
@@ -548,8 +548,8 @@ fn refracted_path_from_dense_medium_is_found() {
     let expected = layered_optical_path(&[(1.15, 0.1), (1.3, 1e-5), (1.0, 0.1)], 1.0);
     match solve(&scene, &optics, Emitter::Point { position: s }, &seq, Target::Point(target), &SolveOptions::default()) {
         Ok(sol) => {
-            let err = (sol.optical_path_m - expected).abs();
-            assert!(err <= 1e-12 * expected, "plate: optical path actual {:e}, expected {expected:e}, err {err:e}", sol.optical_path_m);
+            let err = (sol.optical_path_m() - expected).abs();
+            assert!(err <= 1e-12 * expected, "plate: optical path actual {:e}, expected {expected:e}, err {err:e}", sol.optical_path_m());
         }
         Err(e) => failures.push(format!(
             "plate 1.15 | 1.3 | 1.0, lateral 1 m: expected a path with optical path {expected:e} m, solver returned error: {e}"
@@ -597,9 +597,9 @@ fn direct_spreading_is_inverse_square() {
             );
             let op = n * (p - s).length();
             assert!(
-                (sol.optical_path_m - op).abs() <= 1e-15 * op,
+                (sol.optical_path_m() - op).abs() <= 1e-15 * op,
                 "direct optical path actual {:e}, expected n r {op:e}",
-                sol.optical_path_m
+                sol.optical_path_m()
             );
         }
     }

@@ -3,7 +3,7 @@
 //! Belcour–Barla's Fourier series, with its spectral integration bypassed and every order kept,
 //! is the exact Airy reflectance; dropping the TIR phase leaves R unchanged (|r| = 1 under TIR)
 //! and changes the retardance only beyond the critical angle, where at zero thickness the exact
-//! one is the convention-free TIR retardance of PHYSICS.md §1.
+//! one is the convention-free TIR retardance of docs/PHYSICS.md §1.
 
 use fringe::analytic::plate::{Film, Pol};
 use fringe::renderer_models::{
@@ -176,7 +176,7 @@ fn fitted_sensitivities_approximate_the_cie_integral() {
     );
 }
 
-/// Convention-free TIR retardance of one interface (PHYSICS.md §1): tan(|Δ|/2) =
+/// Convention-free TIR retardance of one interface (docs/PHYSICS.md §1): tan(|Δ|/2) =
 /// cos θ √(sin²θ − n21²)/sin²θ.
 fn tir_retardance(theta: f64, n21: f64) -> f64 {
     let s2 = theta.sin().powi(2);

@@ -149,10 +149,11 @@ fn path_differences_from_1_nm_to_10_m() {
             &TraceSettings::default(),
         );
         assert_eq!(arr.len(), 2);
-        let traced = arr[1].path.optical_path_m - arr[0].path.optical_path_m;
+        // Formed in double-double before rounding (issue #13: no 1e-9 rad floor at 1 m).
+        let traced = (arr[1].path.optical_path - arr[0].path.optical_path).to_f64();
         let exact = dx; // collinear: r2 − r1 = dx exactly
         let phase_err = std::f64::consts::TAU * (traced - exact).abs() / lambda;
-        let allowed = if distance <= 1.0 { 1e-6 } else { 1e-5 };
+        let allowed = 1e-12;
         assert!(
             phase_err <= allowed,
             "distance {distance} m: phase error {phase_err:e} rad (traced Δs {traced:e}, exact {exact:e})"

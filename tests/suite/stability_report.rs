@@ -137,3 +137,46 @@ fn a_failing_stability_check_becomes_failing_table_rows() {
     let table = fringe::report::table(&rows);
     assert!(table.contains("FAIL"), "{table}");
 }
+
+/// Issue #13 item 4: the sweep can fail. A deliberately naive build — every traced optical path
+/// rounded to an absolute f64 before phases are formed — fails it: the path rows from about
+/// 1 mm on (an f64 path of 1 m is off by up to 1.1e-16 m, ~1e-9 rad) and the film whose wave
+/// is referred to a point 100 m away (5e-6 in R in the issue), while fringe's double-double
+/// paths pass every row.
+#[test]
+fn a_naive_build_with_absolute_f64_paths_fails_the_sweep() {
+    let naive = stability::sweep_with(stability::PathArithmetic::AbsoluteF64);
+    let failed: Vec<_> = naive
+        .rows
+        .iter()
+        .filter(|r| r.pass == Some(false))
+        .collect();
+    for r in &failed {
+        eprintln!(
+            "naive build fails: {} / {}: deviation {:e} > {:e}",
+            r.group,
+            r.condition,
+            r.deviation,
+            r.tolerance.unwrap_or(f64::NAN)
+        );
+    }
+    for group in ["paths", "films"] {
+        assert!(
+            failed.iter().any(|r| r.group == group),
+            "the naive build passes every {group} row"
+        );
+    }
+    let at_100_m = failed
+        .iter()
+        .find(|r| r.condition.contains("100 m above the film"))
+        .expect("the naive build fails the 100 m reference row");
+    assert!(at_100_m.deviation > 1e-9, "{at_100_m:?}");
+    let one_metre = failed
+        .iter()
+        .find(|r| r.group == "paths" && r.condition.starts_with("s = 1 m,"))
+        .expect("the naive build fails the 1 m path row");
+    assert!(one_metre.deviation > 1e-11, "{one_metre:?}");
+    // The honest build passes the same rows.
+    let good = stability::sweep();
+    assert!(good.rows.iter().all(|r| r.pass != Some(false)));
+}

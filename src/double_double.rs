@@ -1,0 +1,336 @@
+//! Double-double numbers: an unevaluated sum hi + lo of two f64 with |lo| ≤ ulp(hi)/2, about
+//! 106 significant bits, for optical paths (metres) that must keep their digits.
+//!
+//! Interference is a phase measurement: a 100 m optical path is 1.8·10^8 wavelengths, and an
+//! absolute path summed in f64 loses ~1e-14 m there (~1e-7 rad of phase), while the fringes
+//! depend only on path *differences* of a few µm. fringe therefore carries every optical path as
+//! a [`DoubleDouble`] (docs/PHYSICS.md §1, "Precision"): segment lengths are formed from the f64 hit
+//! points with exact coordinate differences ([`segment_length`]), the far-field wavefront
+//! projection n d·(x − reference) with exact differences and products ([`projection`]), sums
+//! with Knuth's TwoSum, and differences of paths to the same point in double-double before they
+//! are rounded to f64 cycles. The points themselves stay f64: by Fermat's principle the optical
+//! length of an exact path is stationary, so their rounding along the surfaces changes a path
+//! only to second order.
+//!
+//! The error-free transformations (Knuth's TwoSum, Dekker's TwoProd through the fused
+//! multiply-add) and the double-double sum, product and square root follow Hida, Li and Bailey,
+//! "Library for double-double and quad-double arithmetic" (2007), §2–3: relative error of a sum
+//! or product ≤ 4·2⁻¹⁰⁶ ≈ 5e-32 (a few units of 2⁻¹⁰⁶), of the square root a few units more.
+
+use glam::DVec3;
+use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+
+/// hi + lo, with hi = fl(hi + lo) (normalized). Units are the caller's (metres for paths).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct DoubleDouble {
+    /// The value rounded to f64.
+    pub hi: f64,
+    /// What rounding to f64 left out.
+    pub lo: f64,
+}
+
+/// a + b exactly as hi + lo (Knuth's TwoSum; no condition on |a|, |b|).
+#[inline(always)]
+pub fn two_sum(a: f64, b: f64) -> DoubleDouble {
+    let s = a + b;
+    let bb = s - a;
+    let e = (a - (s - bb)) + (b - bb);
+    DoubleDouble { hi: s, lo: e }
+}
+
+/// a + b exactly when |a| ≥ |b| or a = 0 (Dekker's FastTwoSum).
+#[inline(always)]
+fn fast_two_sum(a: f64, b: f64) -> DoubleDouble {
+    let s = a + b;
+    DoubleDouble {
+        hi: s,
+        lo: b - (s - a),
+    }
+}
+
+/// a − b exactly as hi + lo (TwoSum of a and −b): the exact difference of two coordinates.
+#[inline(always)]
+pub fn two_diff(a: f64, b: f64) -> DoubleDouble {
+    two_sum(a, -b)
+}
+
+/// a·b exactly as hi + lo (TwoProd: the fused multiply-add returns the rounding error).
+#[inline(always)]
+pub fn two_prod(a: f64, b: f64) -> DoubleDouble {
+    let p = a * b;
+    DoubleDouble {
+        hi: p,
+        lo: a.mul_add(b, -p),
+    }
+}
+
+impl DoubleDouble {
+    pub const ZERO: DoubleDouble = DoubleDouble { hi: 0.0, lo: 0.0 };
+
+    /// The f64 `x` exactly.
+    #[inline(always)]
+    pub const fn from_f64(x: f64) -> Self {
+        DoubleDouble { hi: x, lo: 0.0 }
+    }
+
+    /// The value rounded to f64 (hi, since the pair is normalized).
+    #[inline(always)]
+    pub fn to_f64(self) -> f64 {
+        self.hi + self.lo
+    }
+
+    /// |self|.
+    #[inline]
+    pub fn abs(self) -> Self {
+        if self.hi < 0.0 || (self.hi == 0.0 && self.lo < 0.0) {
+            -self
+        } else {
+            self
+        }
+    }
+
+    /// self · b for an f64 `b` (Hida–Li–Bailey, double-double times double).
+    #[inline(always)]
+    pub fn mul_f64(self, b: f64) -> Self {
+        let p = two_prod(self.hi, b);
+        fast_two_sum(p.hi, self.lo.mul_add(b, p.lo))
+    }
+
+    /// The square root (one Newton step on the f64 root: Karp's method); 0 for 0.
+    #[inline]
+    pub fn sqrt(self) -> Self {
+        if self.hi <= 0.0 {
+            return DoubleDouble::ZERO;
+        }
+        // x = √hi; √(hi + lo) ≈ x + (hi + lo − x²)/(2x), the residual formed exactly.
+        let x = self.hi.sqrt();
+        let residual = (self - two_prod(x, x)).to_f64();
+        fast_two_sum(x, residual / (2.0 * x))
+    }
+}
+
+impl From<f64> for DoubleDouble {
+    fn from(x: f64) -> Self {
+        DoubleDouble::from_f64(x)
+    }
+}
+
+impl Add for DoubleDouble {
+    type Output = DoubleDouble;
+    /// The accurate double-double sum (two TwoSums; relative error ≤ 2·2⁻¹⁰⁶ for sums without
+    /// cancellation, and exact-difference quality for cancelling ones).
+    #[inline(always)]
+    fn add(self, b: DoubleDouble) -> DoubleDouble {
+        let s = two_sum(self.hi, b.hi);
+        let t = two_sum(self.lo, b.lo);
+        let s = fast_two_sum(s.hi, s.lo + t.hi);
+        fast_two_sum(s.hi, s.lo + t.lo)
+    }
+}
+
+impl Add<f64> for DoubleDouble {
+    type Output = DoubleDouble;
+    #[inline(always)]
+    fn add(self, b: f64) -> DoubleDouble {
+        let s = two_sum(self.hi, b);
+        fast_two_sum(s.hi, s.lo + self.lo)
+    }
+}
+
+impl Neg for DoubleDouble {
+    type Output = DoubleDouble;
+    #[inline(always)]
+    fn neg(self) -> DoubleDouble {
+        DoubleDouble {
+            hi: -self.hi,
+            lo: -self.lo,
+        }
+    }
+}
+
+impl Sub for DoubleDouble {
+    type Output = DoubleDouble;
+    #[inline(always)]
+    fn sub(self, b: DoubleDouble) -> DoubleDouble {
+        self + (-b)
+    }
+}
+
+impl Mul for DoubleDouble {
+    type Output = DoubleDouble;
+    /// The double-double product (relative error ≤ ~4·2⁻¹⁰⁶).
+    #[inline(always)]
+    fn mul(self, b: DoubleDouble) -> DoubleDouble {
+        let p = two_prod(self.hi, b.hi);
+        let lo = self.hi.mul_add(b.lo, self.lo * b.hi) + p.lo;
+        fast_two_sum(p.hi, lo)
+    }
+}
+
+impl Mul<f64> for DoubleDouble {
+    type Output = DoubleDouble;
+    #[inline(always)]
+    fn mul(self, b: f64) -> DoubleDouble {
+        self.mul_f64(b)
+    }
+}
+
+impl AddAssign for DoubleDouble {
+    #[inline(always)]
+    fn add_assign(&mut self, b: DoubleDouble) {
+        *self = *self + b;
+    }
+}
+
+impl SubAssign for DoubleDouble {
+    #[inline(always)]
+    fn sub_assign(&mut self, b: DoubleDouble) {
+        *self = *self - b;
+    }
+}
+
+/// The exact coordinate differences b − a, each as a double-double.
+#[inline(always)]
+fn difference(a: DVec3, b: DVec3) -> [DoubleDouble; 3] {
+    [two_diff(b.x, a.x), two_diff(b.y, a.y), two_diff(b.z, a.z)]
+}
+
+/// |b − a| (m) in double-double for the f64 points `a`, `b`: the coordinate differences are
+/// exact, their squares and sum double-double, so the length of a 100 m segment keeps ~1e-30 m
+/// (relative ~1e-31), far below what rounding the points themselves does to a path.
+#[inline]
+pub fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
+    // Each square (h + l)² = TwoProd(h, h) + 2hl (l² < 2⁻¹⁰⁶ h² is below the format); the three
+    // are positive, so the sum needs no cancellation-proof addition: two TwoSums of the high
+    // parts, the low parts added in f64 (relative error a few 2⁻¹⁰⁴).
+    let square = |x: DoubleDouble| {
+        let p = two_prod(x.hi, x.hi);
+        (p.hi, p.lo + 2.0 * x.hi * x.lo)
+    };
+    let [dx, dy, dz] = difference(a, b);
+    let ((x, xl), (y, yl), (z, zl)) = (square(dx), square(dy), square(dz));
+    let s = two_sum(x, y);
+    let t = two_sum(s.hi, z);
+    fast_two_sum(t.hi, t.lo + s.lo + xl + yl + zl).sqrt()
+}
+
+/// d·(x − reference) in double-double for the f64 vectors `d` (unit, a ray direction), `x`
+/// and `reference`: the signed distance of `x` ahead of the plane through `reference`
+/// perpendicular to `d` — the far-field wavefront projection (times −n it is the optical path
+/// from `x` to the wavefront through `reference`, docs/PHYSICS.md §5 Airy: equal paths to the lens
+/// focus), and the phase of a plane wave at `x` (times n). The differences are exact and the
+/// products and sum double-double, so a reference 100 m away costs nothing.
+#[inline]
+pub fn projection(d: DVec3, x: DVec3, reference: DVec3) -> DoubleDouble {
+    let [dx, dy, dz] = difference(reference, x);
+    dx * d.x + dy * d.y + dz * d.z
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn two_sum_and_two_prod_are_exact() {
+        // 1 + 2⁻⁶⁰ is not an f64: the sum keeps the small part in lo.
+        let s = two_sum(1.0, 2f64.powi(-60));
+        assert_eq!((s.hi, s.lo), (1.0, 2f64.powi(-60)));
+        // (1 + 2⁻³⁰)² = 1 + 2⁻²⁹ + 2⁻⁶⁰.
+        let a = 1.0 + 2f64.powi(-30);
+        let p = two_prod(a, a);
+        assert_eq!((p.hi, p.lo), (1.0 + 2f64.powi(-29), 2f64.powi(-60)));
+        // 0.1 − 0.1·(1 + 2⁻⁵²) as an exact difference.
+        let b = 0.1 * (1.0 + f64::EPSILON);
+        let d = two_diff(0.1, b);
+        assert_eq!(d.hi + d.lo, 0.1 - b);
+    }
+
+    #[test]
+    fn sum_of_a_large_and_a_small_path_keeps_both() {
+        // 100 m + 1 pm − 100 m = 1 pm (f64 alone keeps 1.4e-14 m steps at 100 m).
+        let s = DoubleDouble::from(100.0) + 1e-12 - DoubleDouble::from(100.0);
+        let err = (s.to_f64() - 1e-12).abs();
+        assert!(
+            err <= 1e-28,
+            "actual {:e}, expected 1e-12, err {err:e}",
+            s.to_f64()
+        );
+    }
+
+    #[test]
+    fn square_root_of_a_square() {
+        // √(x²) = x for x = 1 + 2⁻⁴⁰ (x² needs 81 bits: hi + lo).
+        let x = 1.0 + 2f64.powi(-40);
+        let r = two_prod(x, x).sqrt();
+        assert_eq!(r.hi, x);
+        assert!(r.lo.abs() <= 1e-31, "lo {:e}", r.lo);
+        // √2² = 2 to double-double precision.
+        let s2 = DoubleDouble::from(2.0).sqrt();
+        let back = s2 * s2 - DoubleDouble::from(2.0);
+        assert!(
+            back.to_f64().abs() <= 1e-30,
+            "√2² − 2 = {:e}",
+            back.to_f64()
+        );
+        assert_eq!(DoubleDouble::ZERO.sqrt(), DoubleDouble::ZERO);
+    }
+
+    #[test]
+    fn segment_length_of_a_3_4_5_triangle_far_from_the_origin() {
+        // The same 3-4-5 µm segment at the origin and 100 m away: exact differences make the
+        // two lengths agree to double-double precision.
+        let len = |o: DVec3| segment_length(o, o + DVec3::new(3e-6, 4e-6, 0.0));
+        let near = len(DVec3::ZERO);
+        assert!((near.to_f64() - 5e-6).abs() <= 1e-21);
+        let o = DVec3::new(100.0, -37.0, 12.5);
+        let b = o + DVec3::new(3e-6, 4e-6, 0.0);
+        // The f64 point b is o + (3e-6, 4e-6, 0) rounded; its exact differences give the length.
+        let (ex, ey) = (b.x - o.x, b.y - o.y); // exact: Sterbenz (b within a factor 2 of o)
+        let expected = ex.hypot(ey);
+        let err = (segment_length(o, b).to_f64() - expected).abs();
+        assert!(
+            err <= 1e-21,
+            "actual {:e}, expected {expected:e}",
+            segment_length(o, b).to_f64()
+        );
+    }
+
+    #[test]
+    fn segment_length_equals_the_double_double_norm() {
+        // The fast sum of squares against the general double-double arithmetic.
+        let pts = [
+            (DVec3::new(0.1, -0.2, 0.3), DVec3::new(100.0, 3e-7, -12.5)),
+            (DVec3::new(1e-12, 0.0, 0.0), DVec3::new(0.0, 1e-12, 1e-12)),
+            (
+                DVec3::new(567.0, 0.0, 1e-3),
+                DVec3::new(567.0 + 1e-6, 0.0, -2e-6),
+            ),
+        ];
+        for (a, b) in pts {
+            let [dx, dy, dz] = difference(a, b);
+            let general = (dx * dx + dy * dy + dz * dz).sqrt();
+            let fast = segment_length(a, b);
+            let err = (fast - general).to_f64().abs();
+            assert!(
+                err <= 1e-30 * general.hi,
+                "{a} → {b}: {fast:?} vs {general:?}"
+            );
+        }
+    }
+
+    #[test]
+    fn projection_of_a_far_reference_keeps_the_difference() {
+        // x − reference = (0, 0, −100) + (1e-9, 0, 0) along d = z: the projection is −100 m;
+        // two points 1 nm apart along d differ by exactly 1 nm.
+        let d = DVec3::Z;
+        let r = DVec3::new(0.0, 0.0, 100.0);
+        let p1 = projection(d, DVec3::new(1e-3, 0.0, 0.0), r);
+        let p2 = projection(d, DVec3::new(1e-3, 0.0, 1e-9), r);
+        let diff = (p2 - p1).to_f64();
+        assert!(
+            (diff - 1e-9).abs() <= 1e-25,
+            "actual {diff:e}, expected 1e-9"
+        );
+        assert_eq!(p1.to_f64(), -100.0);
+    }
+}
