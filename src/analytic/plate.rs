@@ -215,17 +215,32 @@ impl TwoBeamPlate {
             let tan_t = st / (1.0 - st * st).sqrt();
             a + 2.0 * d * tan_t + ho * a / hs - x_m
         };
-        let a = super::bisect(0.0, x_m, lateral);
-        // The path through that entry point, in double-double.
-        let l1 = (TwoFloat::new_mul(a, a) + TwoFloat::new_mul(hs, hs)).sqrt();
-        let st = TwoFloat::from(a) * (n1 / n2) / l1; // n1/n2 is an input ratio, rounded once
-        let ct = (TwoFloat::from(1.0) - st * st).sqrt();
-        let x_e = TwoFloat::from(a) + st / ct * (2.0 * d);
+        let a0 = super::bisect(0.0, x_m, lateral);
+        // The entry point's first leg, Snell angle and exit point in double-double. n1/n2 is an
+        // input ratio, rounded once (a Snell angle off by 1e-16 moves the path's interior points
+        // along their planes: second order in the optical path).
+        let offset = |a: TwoFloat| {
+            let l1 = (a * a + TwoFloat::new_mul(hs, hs)).sqrt();
+            let st = precise::div(a * (n1 / n2), l1);
+            let ct = (TwoFloat::from(1.0) - st * st).sqrt();
+            (l1, ct, a + precise::div(st, ct) * (2.0 * d))
+        };
+        // One Newton step puts the entry point where f64 cannot: near grazing the amplitudes
+        // depend on it to first order (cos θ = h_s/L1 is small), the optical path does not.
+        let a = {
+            let h = 1e-7 * a0.max(hs);
+            let slope = (lateral(a0 + h) - lateral(a0 - h)) / (2.0 * h);
+            let a0 = TwoFloat::from(a0);
+            let miss = offset(a0).2 + a0 * (ho / hs) - x_m;
+            a0 - miss / slope
+        };
+        let (l1, ct, x_e) = offset(a);
         let dx = TwoFloat::from(x_m) - x_e;
         let l3 = (dx * dx + TwoFloat::new_mul(ho, ho)).sqrt();
-        let op = l1 * n1 + TwoFloat::from(2.0 * d) * n2 / ct + l3 * n1;
-        let cos_i = hs / f64::from(l1);
+        let op = l1 * n1 + precise::div(TwoFloat::from(2.0 * d) * n2, ct) + l3 * n1;
+        let cos_i = f64::from(precise::div(TwoFloat::from(hs), l1));
         let cos_t = f64::from(ct);
+        let a = f64::from(a);
         let f12 = fresnel(n1, n2, cos_i);
         let f23 = fresnel(n2, n1, cos_t);
         let f21 = fresnel(n2, n1, cos_t);

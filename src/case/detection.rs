@@ -185,7 +185,7 @@ fn faulted(arrivals: &[Arrival], fault: Fault) -> Vec<Arrival> {
         let ray = &mut a.vector;
         match fault {
             Fault::Phase(e) => {
-                ray.optical_path_m += e / std::f64::consts::TAU * ray.wavelength_m;
+                ray.optical_path += (e / std::f64::consts::TAU * ray.wavelength_m).into();
             }
             Fault::Amplitude(e) => ray.scale(1.0 + e),
         }

@@ -506,7 +506,6 @@ fn surface_planes(surf: &SurfaceSpec) -> Vec<(glam::DVec3, glam::DVec3)> {
     }
 }
 
-
 impl Validator {
     fn fail(&mut self, path: &str, msg: impl Into<String>) {
         self.errors.push((path.to_string(), msg.into()));
