@@ -12,8 +12,8 @@
 
 use super::build;
 use super::load::{Case, CaseError};
-use super::reference::{self, MetricKind};
-use super::run::{CaseResult, arrivals_at, case_err, internal_reflections, settings};
+use super::reference::MetricKind;
+use super::run::{CaseResult, trace_point};
 use crate::fidelity::Fidelity;
 use crate::trace::{self, Arrival};
 
@@ -84,27 +84,11 @@ pub fn detection_floors(
     let sampled: Vec<usize> = (0..points.len()).step_by(stride).collect();
     let mut traced: Vec<PointArrivals> = Vec::with_capacity(sampled.len());
     for &i in &sampled {
-        let pt = &points[i];
-        let built = build::build_scene(&case.spec.scene, &pt.overrides)
-            .map_err(|e| case_err(case, "$.scene", e))?;
-        let spectrum = build::spectrum(&case.spec.light, &pt.overrides);
-        let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
-        let st = settings(case, &built, internal);
-        let mut per_lambda = Vec::with_capacity(spectrum.len());
-        for &(lambda, w) in &spectrum {
-            let optics = built
-                .scene
-                .optics(lambda)
-                .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-            let target = build::target(&pt.observer, &built, lambda)
-                .map_err(|e| case_err(case, "$.probe", e))?;
-            let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
-                .map_err(|e| case_err(case, "$.probe", e))?;
-            per_lambda.push((
-                w * factor,
-                arrivals_at(&built, &optics, &target, &pt.observer, &st),
-            ));
-        }
+        let mut per_lambda = Vec::new();
+        trace_point(case, &points[i], |_, _, sample| {
+            per_lambda.push((sample.weight * sample.factor, sample.arrivals));
+            Ok(())
+        })?;
         traced.push(per_lambda);
     }
     let analytic: Vec<f64> = sampled.iter().map(|&i| primary.analytic[i]).collect();

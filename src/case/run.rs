@@ -143,7 +143,7 @@ struct PointOut {
     internal: usize,
 }
 
-pub(super) fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
+fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
     CaseError {
         file: case.file.clone(),
         json_path: path.into(),
@@ -162,11 +162,7 @@ fn gaussian(light: &Light) -> Option<(f64, f64)> {
 }
 
 /// The internal-reflection budget at a probe point.
-pub(super) fn internal_reflections(
-    case: &Case,
-    built: &Built,
-    lambda_m: f64,
-) -> Result<usize, CaseError> {
+fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usize, CaseError> {
     let spec = &case.spec;
     let Some(eps) = spec.trace.airy_tail_epsilon else {
         return Ok(spec.trace.max_internal_reflections);
@@ -410,7 +406,7 @@ pub fn trace_settings(
     ))
 }
 
-pub(super) fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
+fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
     TraceSettings {
         limits: EnumerationLimits {
             max_internal_reflections: internal,
@@ -432,7 +428,7 @@ fn probe_targets(target: &Target) -> Vec<DVec3> {
 }
 
 /// All arrivals at a target that the observer records.
-pub(super) fn arrivals_at(
+fn arrivals_at(
     built: &Built,
     optics: &crate::scene::SceneOptics,
     target: &Target,
@@ -501,35 +497,78 @@ fn special_value(
     }
 }
 
-fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointOut, CaseError> {
+/// One spectral sample of a probe point as traced.
+pub(super) struct Sample {
+    /// Index in the spectrum, vacuum wavelength (m) and spectral weight.
+    pub index: usize,
+    pub lambda_m: f64,
+    pub weight: f64,
+    pub target: Target,
+    /// The factor from |E|² to the probe's observable ([`reference::observable_factor`]).
+    pub factor: f64,
+    pub arrivals: Vec<Arrival>,
+}
+
+/// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
+/// spectral sample traced, one at a time (a point's arrivals over a long spectrum are never
+/// held together).
+pub(super) fn trace_point(
+    case: &Case,
+    pt: &ProbePoint,
+    mut visit: impl FnMut(&Built, &[(f64, f64)], Sample) -> Result<(), CaseError>,
+) -> Result<(Built, usize), CaseError> {
     let spec = &case.spec;
     let built =
         build::build_scene(&spec.scene, &pt.overrides).map_err(|e| case_err(case, "$.scene", e))?;
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
-    let center = spectrum[spectrum.len() / 2].0;
-    let internal = internal_reflections(case, &built, center)?;
+    let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
     let st = settings(case, &built, internal);
+    for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
+        let optics = built
+            .scene
+            .optics(lambda_m)
+            .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+        let target = build::target(&pt.observer, &built, lambda_m)
+            .map_err(|e| case_err(case, "$.probe", e))?;
+        let arrivals = arrivals_at(&built, &optics, &target, &pt.observer, &st);
+        // |E|² → the observable the probe measures (R or T of a plane wave in the far field).
+        let factor = reference::observable_factor(&pt.observer, &built, &target, lambda_m)
+            .map_err(|e| case_err(case, "$.probe", e))?;
+        let sample = Sample {
+            index,
+            lambda_m,
+            weight,
+            target,
+            factor,
+            arrivals,
+        };
+        visit(&built, &spectrum, sample)?;
+    }
+    Ok((built, internal))
+}
+
+fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointOut, CaseError> {
+    let spec = &case.spec;
     let mut out = PointOut {
         intensity: levels.iter().map(|l| (*l, 0.0)).collect(),
         analytic: vec![0.0; spec.references.len()],
         special: vec![BTreeMap::new(); spec.references.len()],
         needs: SceneNeeds::default(),
         arrivals: 0,
-        internal,
+        internal: 0,
     };
     let mut center_arrivals = Vec::new();
     let mut center_target = None;
-    for (k, &(lambda, w)) in spectrum.iter().enumerate() {
-        let optics = built
-            .scene
-            .optics(lambda)
-            .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-        let target = build::target(&pt.observer, &built, lambda)
-            .map_err(|e| case_err(case, "$.probe", e))?;
-        let arr = arrivals_at(&built, &optics, &target, &pt.observer, &st);
-        // |E|² → the observable the probe measures (R or T of a plane wave in the far field).
-        let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
-            .map_err(|e| case_err(case, "$.probe", e))?;
+    let mut center = 0.0;
+    let (built, internal) = trace_point(case, pt, |built, spectrum, sample| {
+        let Sample {
+            index: k,
+            lambda_m: lambda,
+            weight: w,
+            target,
+            factor,
+            arrivals: arr,
+        } = sample;
         for l in levels {
             *out.intensity.get_mut(l).unwrap() += w * factor * trace::intensity(&arr, *l);
         }
@@ -554,8 +593,12 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             out.needs = trace::needs(&arr);
             center_arrivals = arr;
             center_target = Some(target);
+            center = lambda;
         }
-    }
+        Ok(())
+    })?;
+    out.internal = internal;
+    let spectrum = build::spectrum(&spec.light, &pt.overrides);
     let target = center_target.expect("the spectrum has at least one sample");
     for (ri, r) in spec.references.iter().enumerate() {
         match reference::kind(&r.model) {
