@@ -6,6 +6,7 @@ use super::build::{Built, plane_wave};
 use super::spec::{BeamSpec, FarSide, Observer, ReferenceModel};
 use crate::analytic::{self, michelson, plate::Pol};
 use crate::fresnel;
+use crate::material::Medium;
 use crate::observable::{Observable, Returns, power_factor};
 use crate::path::Target;
 use crate::scene::SurfaceKind;
@@ -270,10 +271,7 @@ pub fn value(
             })
         }
         ReferenceModel::TwoBeamPlate { plate } => {
-            let (top, bottom) = (
-                built.surface(&format!("{plate}.top"))?,
-                built.surface(&format!("{plate}.bottom"))?,
-            );
+            let (top, bottom, [above, glass, below]) = layer_media(built, plate)?;
             let src = scene
                 .sources
                 .iter()
@@ -281,17 +279,6 @@ pub fn value(
                 .ok_or("two_beam_plate needs a point source")?;
             let Emitter::Point { position: s } = src.emitter else {
                 unreachable!()
-            };
-            let (
-                SurfaceKind::Interface {
-                    front: above,
-                    back: glass,
-                    ..
-                },
-                SurfaceKind::Interface { back: below, .. },
-            ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
-            else {
-                return Err("two_beam_plate: the plate faces must be interfaces".into());
             };
             let n1 = above.index(lambda_m).map_err(|e| e.to_string())?;
             if below.index(lambda_m).map_err(|e| e.to_string())? != n1 {
@@ -329,22 +316,8 @@ pub fn value(
             index_override,
         } => airy(built, film, *index_override, target, lambda_m),
         ReferenceModel::Wedge { wedge } => {
-            let (top, bottom) = (
-                built.surface(&format!("{wedge}.top"))?,
-                built.surface(&format!("{wedge}.bottom"))?,
-            );
+            let (top, bottom, [above, glass, below]) = layer_media(built, wedge)?;
             let (tp, bp) = (&scene.surfaces[top].plane, &scene.surfaces[bottom].plane);
-            let (
-                SurfaceKind::Interface {
-                    front: above,
-                    back: glass,
-                    ..
-                },
-                SurfaceKind::Interface { back: below, .. },
-            ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
-            else {
-                return Err("wedge faces must be interfaces".into());
-            };
             let (d, reference) = plane_wave(scene).ok_or("wedge needs a plane-wave source")?;
             if (d + tp.normal).length() > 1e-12 {
                 return Err(
@@ -363,7 +336,7 @@ pub fn value(
                 }
             }
             let p = point(target)?;
-            let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
+            let ix = |m: &Medium| m.index(lambda_m).map_err(|e| e.to_string());
             let w = analytic::wedge::Wedge {
                 n1: ix(above)?,
                 n: ix(glass)?,
@@ -495,6 +468,31 @@ fn airy(
     Ok(total)
 }
 
+/// The media above, inside and below the plate or wedge `name`, read from its two faces (the
+/// top face's front and back, the bottom face's back), with the faces' scene indices.
+fn layer_media<'a>(
+    built: &'a Built,
+    name: &str,
+) -> Result<(usize, usize, [&'a Medium; 3]), String> {
+    let (top, bottom) = (
+        built.surface(&format!("{name}.top"))?,
+        built.surface(&format!("{name}.bottom"))?,
+    );
+    let scene = &built.scene;
+    let (
+        SurfaceKind::Interface {
+            front: above,
+            back: inside,
+            ..
+        },
+        SurfaceKind::Interface { back: below, .. },
+    ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
+    else {
+        return Err(format!("the faces of {name:?} must be interfaces"));
+    };
+    Ok((top, bottom, [above, inside, below]))
+}
+
 /// The film of an Airy reference (for the bounce-count choice and the convergence report).
 pub fn airy_film(
     built: &Built,
@@ -502,22 +500,8 @@ pub fn airy_film(
     lambda_m: f64,
 ) -> Result<(analytic::plate::Film, f64), String> {
     let scene = &built.scene;
-    let (top, bottom) = (
-        built.surface(&format!("{film}.top"))?,
-        built.surface(&format!("{film}.bottom"))?,
-    );
-    let (
-        SurfaceKind::Interface {
-            front: m1,
-            back: m2,
-            ..
-        },
-        SurfaceKind::Interface { back: m3, .. },
-    ) = (&scene.surfaces[top].kind, &scene.surfaces[bottom].kind)
-    else {
-        return Err("the film faces must be interfaces".into());
-    };
-    let ix = |m: &crate::material::Medium| m.index(lambda_m).map_err(|e| e.to_string());
+    let (top, bottom, [m1, m2, m3]) = layer_media(built, film)?;
+    let ix = |m: &Medium| m.index(lambda_m).map_err(|e| e.to_string());
     let nrm = scene.surfaces[top].plane.normal;
     let (d, _) = plane_wave(scene).ok_or("needs a plane-wave source")?;
     let film = analytic::plate::Film {

@@ -7,6 +7,7 @@
 //! minimal modification of a library case; `expected.json` maps it to the JSON path and a
 //! message fragment saying what is allowed).
 
+use crate::support::snapshot;
 use assert_cmd::Command;
 use predicates::prelude::*;
 use serde_json::Value;
@@ -81,22 +82,6 @@ impl Lib {
         f(&mut v);
         std::fs::write(&p, serde_json::to_string_pretty(&v).unwrap()).unwrap();
     }
-}
-
-/// Every file under `dir` with its bytes (empty if `dir` is absent).
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    if let Ok(rd) = std::fs::read_dir(dir) {
-        for e in rd {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                out.extend(snapshot(&p));
-            } else {
-                out.insert(p.clone(), std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    out
 }
 
 fn absent_or_empty(dir: &Path) -> bool {

@@ -5,6 +5,7 @@
 //! blessed, and `render` options get the case file's caps. Every run uses temporary folders;
 //! the repository's golden files are never written.
 
+use crate::support::snapshot;
 use assert_cmd::Command;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -18,22 +19,6 @@ fn bin() -> std::process::Command {
     let mut c = std::process::Command::new(env!("CARGO_BIN_EXE_fringe"));
     c.env_remove("RUST_BACKTRACE");
     c
-}
-
-/// Every file under `dir` (recursively) with its bytes.
-fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
-    let mut out = BTreeMap::new();
-    if let Ok(rd) = std::fs::read_dir(dir) {
-        for e in rd {
-            let p = e.unwrap().path();
-            if p.is_dir() {
-                out.extend(snapshot(&p));
-            } else {
-                out.insert(p.clone(), std::fs::read(&p).unwrap());
-            }
-        }
-    }
-    out
 }
 
 /// A library folder with `cases/` holding the named library cases.
