@@ -72,7 +72,7 @@ pub fn detection_floors(
     let Some(&tolerance) = primary.tolerances.get(&Fidelity::Vector) else {
         return Ok(None);
     };
-    if primary.kind != MetricKind::Intensity || primary.traced.get(&Fidelity::Vector).is_none() {
+    if primary.kind != MetricKind::Intensity || !primary.traced.contains_key(&Fidelity::Vector) {
         return Ok(None);
     }
     let scale = primary
