@@ -177,16 +177,19 @@ pub fn trace_fans(
                                 std::f64::consts::TAU * (b as f64 + rng.next_f64()) / side as f64;
                             let sin_t = (1.0 - cos_t * cos_t).max(0.0).sqrt();
                             let dir = cos_t * axis + sin_t * (phi.cos() * e1 + phi.sin() * e2);
+                            // A dipole channel's field and power fall off as sin² from its
+                            // axis (docs/PHYSICS.md §3); a linear channel's amplitude is 1.
+                            let (e, amplitude) = ch.launch(dir);
                             let mut ray = Ray::linear(
                                 position,
                                 dir,
-                                ch.field_direction(dir),
-                                ch.intensity.sqrt(),
+                                e,
+                                amplitude * ch.intensity.sqrt(),
                                 optics.lambda_m,
                                 optics.ambient_index,
                             );
                             ray.coherence_id = ch.coherence_id;
-                            let power = ch.intensity * d_omega;
+                            let power = amplitude * amplitude * ch.intensity * d_omega;
                             follow(
                                 scene,
                                 optics,

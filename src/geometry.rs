@@ -6,10 +6,20 @@
 use glam::DVec3;
 
 /// An oriented plane through `point` with unit `normal` (the normal points to the *front*).
+///
+/// The plane is held exactly as the points x with (x − `anchor`)·normal = `height_m`; `point`
+/// is a point of it rounded to f64 (`anchor + height_m·normal`). A plate's bottom face is its
+/// top point as anchor and −thickness as height ([`Plane::offset`]), so its distance from the
+/// top face is the thickness itself, not the difference of two rounded points (which at 1000 m
+/// from the origin is off by ~1e-13 m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plane {
     pub point: DVec3,
     pub normal: DVec3,
+    /// The point the plane's height is measured from (m).
+    pub anchor: DVec3,
+    /// Signed distance of the plane from `anchor` along `normal` (m).
+    pub height_m: f64,
 }
 
 impl Plane {
@@ -17,12 +27,43 @@ impl Plane {
         Plane {
             point,
             normal: normal.normalize(),
+            anchor: point,
+            height_m: 0.0,
         }
     }
 
-    /// Signed distance of `x` from the plane (positive on the front side).
+    /// The plane at signed distance `height_m` from `anchor` along the unit `normal`, held as
+    /// anchor and height (a plate's bottom face: top point and −thickness).
+    pub fn offset(anchor: DVec3, normal: DVec3, height_m: f64) -> Self {
+        let normal = normal.normalize();
+        Plane {
+            point: anchor + height_m * normal,
+            normal,
+            anchor,
+            height_m,
+        }
+    }
+
+    /// Signed distance of `x` from the plane (positive on the front side), formed as
+    /// (x − anchor)·normal − height: near a plate, x − anchor is small and exact.
     pub fn signed_distance(&self, x: DVec3) -> f64 {
-        (x - self.point).dot(self.normal)
+        (x - self.anchor).dot(self.normal) - self.height_m
+    }
+
+    /// The distance from `other` to this plane along this plane's normal, when both are held
+    /// from the same anchor with the same or the opposite normal (the faces of one plate):
+    /// exactly the difference of their heights, no coordinates differenced.
+    pub fn separation_from(&self, other: &Plane) -> Option<f64> {
+        if self.anchor != other.anchor {
+            return None;
+        }
+        if self.normal == other.normal {
+            Some(self.height_m - other.height_m)
+        } else if self.normal == -other.normal {
+            Some(self.height_m + other.height_m)
+        } else {
+            None
+        }
     }
 
     /// Ray parameter t (distance along the unit `dir`) where the ray from `origin` meets the

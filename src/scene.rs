@@ -192,8 +192,10 @@ impl Scene {
     }
 
     /// A plane-parallel plate: top face through `top_point` with outward normal `normal`,
-    /// thickness `thickness_m`, `medium` inside, `above` over it and `below` under it.
-    /// Returns the indices of (top, bottom).
+    /// thickness `thickness_m`, `medium` inside, `above` over it and `below` under it. The
+    /// bottom face is held as the top point and −thickness along the normal
+    /// ([`Plane::offset`]), so no coordinate difference enters the thickness. Returns the
+    /// indices of (top, bottom).
     pub fn add_plate(
         &mut self,
         name: &str,
@@ -211,9 +213,10 @@ impl Scene {
             above,
             medium.clone(),
         );
+        // Held as top point + normal + thickness (docs: [`Plane::offset`]).
         let bottom = self.add_interface(
             &format!("{name}.bottom"),
-            Plane::new(top_point - thickness_m * n, n),
+            Plane::offset(top_point, n, -thickness_m),
             medium,
             below,
         );

@@ -1,9 +1,12 @@
 //! Light sources: point, line (slit) and plane wave; linear or unpolarized (paper §3.4).
 //!
-//! A source emits *polarization channels*: a linearly polarized source one, an unpolarized
-//! source two orthogonal linear channels of half the intensity each, with different coherence
-//! ids (they are mutually incoherent, docs/PHYSICS.md §3). Sources that share a `coherence_group`
-//! (e.g. the two slits of Young's experiment, lit by one point) are mutually coherent.
+//! A source emits *polarization channels*, mutually incoherent (each its own coherence id,
+//! docs/PHYSICS.md §3): a linearly polarized source one; an unpolarized source, by default,
+//! three dipole channels along x, y and z (basis-free: the fields sent in directions k1, k2 are
+//! correlated as (I − k1k1ᵀ)(I − k2k2ᵀ)/2 whatever the axes, docs/PHYSICS.md §3 "Unpolarized
+//! light"), or, as the paper models it, two orthogonal linear channels of half the intensity
+//! built from a reference vector. Sources that share a `coherence_group` (e.g. the two slits of
+//! Young's experiment, lit by one point) are mutually coherent.
 
 use glam::DVec3;
 
@@ -30,8 +33,31 @@ pub enum Polarization {
     /// Linear: the field is `reference` projected perpendicular to the ray, then rotated by
     /// `angle_rad` about the ray direction (right-handed).
     Linear { reference: DVec3, angle_rad: f64 },
-    /// Unpolarized: two channels, angle 0 and π/2 from `reference`, half intensity each.
-    Unpolarized { reference: DVec3 },
+    /// Unpolarized, basis-free (the default): three incoherent dipole channels along x, y, z,
+    /// each of weight 1/2; a ray along unit k carries the field (a − (a·k)k)·√(I/2) of dipole
+    /// axis a. Σ_a over the three gives the correlation (I − k1k1ᵀ)(I − k2k2ᵀ)/2 of an
+    /// unpolarized point source and |E|² = I in every direction (trace of I − kkᵀ is 2),
+    /// docs/PHYSICS.md §3.
+    Unpolarized,
+    /// The paper's unpolarized model (§3.4): two channels, angle 0 and π/2 from `reference`,
+    /// half intensity each. Its intensities depend on `reference` off the plane of incidence;
+    /// kept to measure that error.
+    UnpolarizedTwoChannel { reference: DVec3 },
+}
+
+/// The channels of one source: at most this many (the basis-free unpolarized model's three
+/// dipoles). Coherence ids are `CHANNELS_PER_GROUP·g + 1 + k` for channel k of group g.
+pub const CHANNELS_PER_GROUP: u64 = 3;
+
+/// How a channel's launch field depends on the ray direction.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum ChannelField {
+    /// Unit field: `reference` projected perpendicular to the ray, rotated by `angle_rad` about
+    /// it (right-handed), see [`Polarization::Linear`].
+    Linear { reference: DVec3, angle_rad: f64 },
+    /// A dipole along unit `axis`: field `axis − (axis·k)k` for a ray along unit k, of length
+    /// sin(angle between axis and k) ≤ 1 (zero along the axis).
+    Dipole { axis: DVec3 },
 }
 
 /// A source.
@@ -54,23 +80,70 @@ pub struct Source {
 pub struct Channel {
     /// Coherence id (never 0: emitted light is coherent with itself).
     pub coherence_id: u64,
-    /// |E|² of the channel.
+    /// |E|² of the channel for a ray whose launch field has unit length (every ray of a
+    /// linear channel; a dipole channel's rays perpendicular to its axis).
     pub intensity: f64,
-    /// The field reference vector and rotation angle, see [`Polarization::Linear`].
-    pub reference: DVec3,
-    pub angle_rad: f64,
+    /// The launch field as a function of the ray direction.
+    pub field: ChannelField,
 }
 
 impl Channel {
-    /// The unit field direction of this channel for a ray leaving along unit `dir`.
-    pub fn field_direction(&self, dir: DVec3) -> DVec3 {
-        self.field_direction_from(field_reference(self.reference, dir), dir)
+    /// The launch field per √intensity for a ray leaving along unit `dir`: a unit vector for a
+    /// linear channel, `axis − (axis·dir)dir` (length ≤ 1) for a dipole. The ray's |E|² is
+    /// `intensity · |launch_field|²`.
+    pub fn launch_field(&self, dir: DVec3) -> DVec3 {
+        let (e, amplitude) = self.launch(dir);
+        e * amplitude
     }
 
-    /// [`Channel::field_direction`] from `e_ref = field_reference(self.reference, dir)` (one
-    /// evaluation serves every channel with the same reference).
+    /// The unit field direction and the amplitude factor (|[`Channel::launch_field`]|) of a
+    /// ray leaving along unit `dir`. A dipole's field along its own axis is zero: amplitude 0
+    /// with an arbitrary unit direction perpendicular to `dir`.
+    pub fn launch(&self, dir: DVec3) -> (DVec3, f64) {
+        match self.field {
+            ChannelField::Linear { .. } => (self.field_direction(dir), 1.0),
+            ChannelField::Dipole { axis } => {
+                // a − (a·k)k = k × (a × k): |a × k| = sin θ is formed without cancellation.
+                let a_cross_k = axis.cross(dir);
+                let perp = dir.cross(a_cross_k);
+                let len = perp.length();
+                if len > 0.0 {
+                    (perp / len, len)
+                } else {
+                    (dir.any_orthonormal_vector(), 0.0)
+                }
+            }
+        }
+    }
+
+    /// The unit field direction of this channel for a ray leaving along unit `dir`.
+    pub fn field_direction(&self, dir: DVec3) -> DVec3 {
+        match self.field {
+            ChannelField::Linear { reference, .. } => {
+                self.field_direction_from(field_reference(reference, dir), dir)
+            }
+            ChannelField::Dipole { .. } => self.launch(dir).0,
+        }
+    }
+
+    /// [`Channel::field_direction`] of a linear channel from
+    /// `e_ref = field_reference(reference, dir)` (one evaluation serves every channel with the
+    /// same reference); `e_ref` itself for a dipole channel.
     pub fn field_direction_from(&self, e_ref: DVec3, dir: DVec3) -> DVec3 {
-        self.angle_rad.cos() * e_ref + self.angle_rad.sin() * dir.cross(e_ref)
+        match self.field {
+            ChannelField::Linear { angle_rad, .. } => {
+                angle_rad.cos() * e_ref + angle_rad.sin() * dir.cross(e_ref)
+            }
+            ChannelField::Dipole { .. } => e_ref,
+        }
+    }
+
+    /// The reference vector of a linear channel (`None` for a dipole).
+    pub fn linear_reference(&self) -> Option<DVec3> {
+        match self.field {
+            ChannelField::Linear { reference, .. } => Some(reference),
+            ChannelField::Dipole { .. } => None,
+        }
     }
 }
 
@@ -86,9 +159,11 @@ pub fn field_reference(reference: DVec3, dir: DVec3) -> DVec3 {
 }
 
 impl Source {
-    /// The polarization channels with their coherence ids: 2g+1 and 2g+2 for group g.
+    /// The polarization channels with their coherence ids: channel k of group g has id
+    /// 3g + 1 + k ([`CHANNELS_PER_GROUP`]), so no two channels of different groups, and no two
+    /// channels of one source, share an id.
     pub fn channels(&self) -> Vec<Channel> {
-        let id = |k: u64| 2 * self.coherence_group + 1 + k;
+        let id = |k: u64| CHANNELS_PER_GROUP * self.coherence_group + 1 + k;
         match self.polarization {
             Polarization::Linear {
                 reference,
@@ -96,15 +171,28 @@ impl Source {
             } => vec![Channel {
                 coherence_id: id(0),
                 intensity: self.intensity,
-                reference,
-                angle_rad,
+                field: ChannelField::Linear {
+                    reference,
+                    angle_rad,
+                },
             }],
-            Polarization::Unpolarized { reference } => (0..2)
+            Polarization::Unpolarized => [DVec3::X, DVec3::Y, DVec3::Z]
+                .into_iter()
+                .zip(0..)
+                .map(|(axis, k)| Channel {
+                    coherence_id: id(k),
+                    intensity: self.intensity / 2.0,
+                    field: ChannelField::Dipole { axis },
+                })
+                .collect(),
+            Polarization::UnpolarizedTwoChannel { reference } => (0..2)
                 .map(|k| Channel {
                     coherence_id: id(k),
                     intensity: self.intensity / 2.0,
-                    reference,
-                    angle_rad: k as f64 * std::f64::consts::FRAC_PI_2,
+                    field: ChannelField::Linear {
+                        reference,
+                        angle_rad: k as f64 * std::f64::consts::FRAC_PI_2,
+                    },
                 })
                 .collect(),
         }

@@ -21,7 +21,7 @@ use crate::path::{
 use crate::ray::{INCOHERENT, LedgerEntry, Ray};
 use crate::scene::{Scene, SceneOptics};
 use crate::sequence_tree::SequenceTree;
-use crate::source::{Channel, Emitter, Source, field_reference};
+use crate::source::{Channel, ChannelField, Emitter, Source, field_reference};
 use crate::trail::Trail;
 use glam::DVec3;
 use num_complex::Complex64;
@@ -124,25 +124,25 @@ pub struct Failure {
 }
 
 /// A channel's ray at the launch point `p0` in direction `d0` (no ledger entries yet), given
-/// `unit = d0.normalize()` and the channel's field reference
-/// `e_ref = field_reference(channel.reference, d0)`; `spreading` is the path's S² and `ledger`
-/// the (empty) record the ray starts with.
+/// `unit = d0.normalize()` and the channel's launch `(e, amplitude)` along `d0`
+/// ([`channel_launch`]); `spreading` is the path's S² and `ledger` the (empty) record the ray
+/// starts with.
 #[allow(clippy::too_many_arguments)]
 #[inline]
 fn launch_ray_with(
     optics: &SceneOptics,
     channel: &Channel,
     coherence_length_m: f64,
-    (p0, d0, spreading): (DVec3, DVec3, f64),
+    (p0, _d0, spreading): (DVec3, DVec3, f64),
     unit: DVec3,
-    e_ref: DVec3,
+    (e, amplitude): (DVec3, f64),
     ledger: Trail<LedgerEntry>,
 ) -> Ray {
     let mut ray = Ray::linear_unit(
         p0,
         unit,
-        channel.field_direction_from(e_ref, d0),
-        (channel.intensity * spreading).sqrt(),
+        e,
+        amplitude * (channel.intensity * spreading).sqrt(),
         optics.lambda_m,
         optics.ambient_index,
     );
@@ -150,6 +150,20 @@ fn launch_ray_with(
     ray.coherence_length_m = coherence_length_m;
     ray.ledger.entries = ledger;
     ray
+}
+
+/// A channel's unit launch field and amplitude factor along `d0` (docs/PHYSICS.md §3): a
+/// linear channel's field from `e_ref = field_reference(reference, d0)` with factor 1 (`e_ref`
+/// is shared by channels with one reference), a dipole's projected axis and its length.
+#[inline]
+fn channel_launch(channel: &Channel, e_ref: Option<DVec3>, d0: DVec3) -> (DVec3, f64) {
+    match (channel.field, e_ref) {
+        (ChannelField::Linear { reference, .. }, e_ref) => {
+            let e_ref = e_ref.unwrap_or_else(|| field_reference(reference, d0));
+            (channel.field_direction_from(e_ref, d0), 1.0)
+        }
+        (ChannelField::Dipole { .. }, _) => channel.launch(d0.normalize()),
+    }
 }
 
 /// Give a just-launched `ray` the optical path `start` already travelled at its launch point
@@ -179,14 +193,13 @@ fn launch_ray(
     path: &SolvedPath,
 ) -> Ray {
     let d0 = path.dirs[0];
-    let e_ref = field_reference(channel.reference, d0);
     let mut ray = launch_ray_with(
         optics,
         channel,
         coherence_length_m,
         launch_of(path),
         d0.normalize(),
-        e_ref,
+        channel_launch(channel, None, d0),
         Trail::with_capacity(ledger_capacity(path)),
     );
     start_at(&mut ray, path.start_optical_path);
@@ -270,9 +283,10 @@ pub fn propagate(
     ray
 }
 
-/// The most channels carried together (a source has one or two; the rays are moved by value,
-/// so room for more would cost every path).
-const SHARED_CHANNELS: usize = 2;
+/// The most channels carried together (a source has one, two or three,
+/// [`crate::source::CHANNELS_PER_GROUP`]; the rays are moved by value, so room for more would
+/// cost every path).
+const SHARED_CHANNELS: usize = 3;
 
 /// The rays of a source's channels along a path. The channels differ only in polarization, so
 /// they travel together: the last channel's ray in full and the others' polarizations riding
@@ -316,7 +330,7 @@ impl ChannelRays {
                 .any(|c| (c.coherence_id == INCOHERENT) != incoherent)
         {
             let alone = |ch: &Channel| {
-                let e = field_reference(ch.reference, d0);
+                let e = channel_launch(ch, None, d0);
                 let mut ray =
                     launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger());
                 start_at(&mut ray, start_path);
@@ -324,17 +338,15 @@ impl ChannelRays {
             };
             return ChannelRays::Apart(channels.iter().map(alone).collect());
         }
-        // The field reference is shared too (bit for bit: one reference gives one projection).
-        let e_ref = field_reference(last.reference, d0);
+        // A linear field reference is shared too (bit for bit: one reference gives one
+        // projection).
+        let lead_reference = last.linear_reference();
+        let e_ref = lead_reference.map(|r| field_reference(r, d0));
         // Only the lead's ledger is kept (the others' frames ride along without one).
         let launch = |ch: &Channel, ledger| {
-            let same = ch.reference.to_array().map(f64::to_bits)
-                == last.reference.to_array().map(f64::to_bits);
-            let e = if same {
-                e_ref
-            } else {
-                field_reference(ch.reference, d0)
-            };
+            let bits = |r: Option<DVec3>| r.map(|r| r.to_array().map(f64::to_bits));
+            let same = bits(ch.linear_reference()) == bits(lead_reference);
+            let e = channel_launch(ch, if same { e_ref } else { None }, d0);
             launch_ray_with(optics, ch, coherence_length_m, start, unit, e, ledger)
         };
         let mut frames = [JonesFrame::default(); SHARED_CHANNELS - 1];

@@ -79,8 +79,9 @@ impl Arm {
     }
 }
 
-/// Intensity at `p` for one linear channel (launch field direction from `launch_field`,
-/// unit intensity), arms mutually coherent, spreading off, in a medium of index `n`:
+/// Intensity at `p` for one channel (launch field from `launch_field`: a unit vector for a
+/// linear channel of unit intensity, a dipole's projected axis for a dipole channel,
+/// docs/PHYSICS.md §3), arms mutually coherent, spreading off, in a medium of index `n`:
 /// |Σ_arms E_a e^{i2π n r_a/λ}|².
 pub fn intensity(
     arms: &[Arm],

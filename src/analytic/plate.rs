@@ -258,6 +258,20 @@ impl TwoBeamPlate {
     /// I = ½|a1s e^{iφ1} + a2s e^{iφ2}|² + ½(|a1p|² + |a2p|² + 2 Re(a1p a2p* e^{i(φ1−φ2)}) cos(θ1 − θ2)),
     /// where the p fields p_k = d_k × s of the two arriving rays make the angle θ1 − θ2.
     pub fn intensity_unpolarized(&self, x_m: f64, lambda_m: f64) -> f64 {
+        self.unpolarized(x_m, lambda_m, 1)
+    }
+
+    /// [`TwoBeamPlate::intensity_unpolarized`] for basis-free unpolarized light (three
+    /// incoherent dipoles of weight 1/2, docs/PHYSICS.md §3): the s fields are those of the
+    /// dipole along s for both beams; the in-plane dipoles give the launch p fields
+    /// (p_k·a) p_k, correlated as Σ_a (p1·a)(p2·a) = cos(θ1 − θ2), so the p cross term carries
+    /// cos²(θ1 − θ2) where the two-channel model's has cos(θ1 − θ2).
+    pub fn intensity_unpolarized_basis_free(&self, x_m: f64, lambda_m: f64) -> f64 {
+        self.unpolarized(x_m, lambda_m, 2)
+    }
+
+    /// The two models: the p cross term with cos(θ1 − θ2) to the power `p_overlap_power`.
+    fn unpolarized(&self, x_m: f64, lambda_m: f64, p_overlap_power: i32) -> f64 {
         let (b1, (b2, op2)) = (self.beam_top(x_m), self.beam_bottom_precise(x_m));
         let op1 = precise::distance(
             glam::DVec3::new(x_m, self.h_src_m, 0.0),
@@ -267,7 +281,9 @@ impl TwoBeamPlate {
         let i_s = (b1.amp_s * ph + b2.amp_s).norm_sqr();
         let i_p = b1.amp_p.norm_sqr()
             + b2.amp_p.norm_sqr()
-            + 2.0 * (b1.amp_p * b2.amp_p.conj() * ph).re * (b1.theta - b2.theta).cos();
+            + 2.0
+                * (b1.amp_p * b2.amp_p.conj() * ph).re
+                * (b1.theta - b2.theta).cos().powi(p_overlap_power);
         0.5 * (i_s + i_p)
     }
 }

@@ -27,6 +27,36 @@ pub fn exact_line_sources(
     n: f64,
     axis_fraction: f64,
 ) -> f64 {
+    let (cos_delta, cos_alpha) = phase_and_angle(s1, s2, axis, p, lambda_m, n);
+    axis_fraction * (2.0 + 2.0 * cos_delta)
+        + (1.0 - axis_fraction) * (2.0 + 2.0 * cos_alpha * cos_delta)
+}
+
+/// [`exact_line_sources`] for basis-free unpolarized light (three incoherent dipoles of weight
+/// 1/2, docs/PHYSICS.md §3): the coherent term is tr[(I − k1k1ᵀ)(I − k2k2ᵀ)]/2 = (1 + cos²α)/2
+/// of the parallel-field one, α the angle between the rays (both perpendicular to the axis),
+/// so `I = 2 + (1 + cos²α) cos δ` (the two-channel model's `1 + cos α` differs by α²/2).
+pub fn exact_line_sources_basis_free(
+    s1: DVec3,
+    s2: DVec3,
+    axis: DVec3,
+    p: DVec3,
+    lambda_m: f64,
+    n: f64,
+) -> f64 {
+    let (cos_delta, cos_alpha) = phase_and_angle(s1, s2, axis, p, lambda_m, n);
+    2.0 + (1.0 + cos_alpha * cos_alpha) * cos_delta
+}
+
+/// cos δ and cos α of [`exact_line_sources`] (double-double distances, δ reduced exactly).
+fn phase_and_angle(
+    s1: DVec3,
+    s2: DVec3,
+    axis: DVec3,
+    p: DVec3,
+    lambda_m: f64,
+    n: f64,
+) -> (f64, f64) {
     let a = axis.normalize();
     let v1 = precise::reject(&precise::diff(p, s1), a);
     let v2 = precise::reject(&precise::diff(p, s2), a);
@@ -34,8 +64,7 @@ pub fn exact_line_sources(
     let cos_delta = precise::path_phasor((r1 - r2) * n, lambda_m).re;
     let dot12 = v1[0] * v2[0] + v1[1] * v2[1] + v1[2] * v2[2];
     let cos_alpha = f64::from(dot12 / (r1 * r2));
-    axis_fraction * (2.0 + 2.0 * cos_delta)
-        + (1.0 - axis_fraction) * (2.0 + 2.0 * cos_alpha * cos_delta)
+    (cos_delta, cos_alpha)
 }
 
 /// Paraxial Young intensity `2(1 + cos(2π n d y/(λ l)))` in a medium of index `n` (paper eq. 4

@@ -334,8 +334,16 @@ pub fn build_scene(spec: &SceneSpec, ov: &Overrides) -> Result<Built, String> {
                 reference: v(reference).normalize(),
                 angle_rad: angle_deg.to_radians(),
             },
-            PolarizationSpec::Unpolarized { reference } => Polarization::Unpolarized {
-                reference: v(reference).normalize(),
+            PolarizationSpec::Unpolarized {
+                model: UnpolarizedModel::BasisFree,
+                ..
+            } => Polarization::Unpolarized,
+            // The loader guarantees the reference of this model.
+            PolarizationSpec::Unpolarized {
+                model: UnpolarizedModel::PaperTwoChannel,
+                reference,
+            } => Polarization::UnpolarizedTwoChannel {
+                reference: v(&reference.ok_or("paper_two_channel needs a reference")?).normalize(),
             },
         };
         scene.sources.push(Source {

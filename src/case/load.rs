@@ -1456,11 +1456,26 @@ impl Validator {
                     "a polarization angle (degrees)",
                 );
             }
-            PolarizationSpec::Unpolarized { reference } => {
-                self.direction(
-                    &format!("{p}.polarization.unpolarized.reference"),
-                    reference,
-                );
+            PolarizationSpec::Unpolarized { model, reference } => {
+                let path = format!("{p}.polarization.unpolarized.reference");
+                match (model, reference) {
+                    (UnpolarizedModel::PaperTwoChannel, Some(r)) => {
+                        self.direction(&path, r);
+                    }
+                    (UnpolarizedModel::PaperTwoChannel, None) => self.fail(
+                        &path,
+                        "the model \"paper_two_channel\" builds its two channels from a \
+                         reference direction: give one, e.g. [0, 0, 1]",
+                    ),
+                    (UnpolarizedModel::BasisFree, Some(_)) => self.fail(
+                        &path,
+                        "unpolarized light is basis-free by default (three incoherent dipoles \
+                         along x, y, z) and takes no reference; remove it, or write \
+                         \"model\": \"paper_two_channel\" for the paper's two channels built \
+                         from it",
+                    ),
+                    (UnpolarizedModel::BasisFree, None) => {}
+                }
             }
         }
         self.positive(
@@ -1494,24 +1509,32 @@ impl Validator {
     /// an unbounded surface, and a plane wave's polarization reference not along its direction.
     fn placement(&mut self, p: &str, src: &SourceSpec, s: &SceneSpec) {
         use glam::DVec3;
-        let (pol_path, reference) = match &src.polarization {
+        // The polarization reference, if the source has one (basis-free unpolarized light has
+        // none).
+        let pol_reference = match &src.polarization {
             PolarizationSpec::Linear { reference, .. } => {
-                (format!("{p}.polarization.linear.reference"), reference)
+                Some((format!("{p}.polarization.linear.reference"), reference))
             }
-            PolarizationSpec::Unpolarized { reference } => {
-                (format!("{p}.polarization.unpolarized.reference"), reference)
-            }
+            PolarizationSpec::Unpolarized {
+                reference: Some(reference),
+                ..
+            } => Some((format!("{p}.polarization.unpolarized.reference"), reference)),
+            PolarizationSpec::Unpolarized {
+                reference: None, ..
+            } => None,
         };
         let (anchor, line_axis) = match &src.emitter {
             EmitterSpec::Point { position_m } => (DVec3::from_array(*position_m), None),
             EmitterSpec::Line { point_m, axis } => (DVec3::from_array(*point_m), unit(axis)),
             EmitterSpec::PlaneWave { direction, .. } => {
-                self.not_parallel(
-                    &pol_path,
-                    reference,
-                    direction,
-                    "the polarization reference must not be parallel to the plane wave's direction (the field would be undefined)",
-                );
+                if let Some((pol_path, reference)) = &pol_reference {
+                    self.not_parallel(
+                        pol_path,
+                        reference,
+                        direction,
+                        "the polarization reference must not be parallel to the plane wave's direction (the field would be undefined)",
+                    );
+                }
                 return;
             }
         };

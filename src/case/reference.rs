@@ -150,20 +150,39 @@ fn line_sources(built: &Built) -> Result<Vec<(&Source, DVec3, DVec3)>, String> {
     Ok(v)
 }
 
+/// The thickness of a plate from its two faces: the difference of their heights when both are
+/// held from the top point ([`crate::geometry::Plane::offset`], exact), else from their points.
+fn plate_thickness(scene: &crate::scene::Scene, top: usize, bottom: usize) -> f64 {
+    let (t, b) = (&scene.surfaces[top].plane, &scene.surfaces[bottom].plane);
+    t.separation_from(b)
+        .unwrap_or_else(|| (t.point - b.point).dot(t.normal))
+}
+
 /// Fraction of a source's intensity polarized along `axis` (1, 0 or 1/2), if its channels are
-/// along and perpendicular to `axis`.
-fn axis_fraction(src: &Source, axis: DVec3) -> Result<f64, String> {
+/// linear and along and perpendicular to `axis`; `None` for basis-free unpolarized light
+/// (docs/PHYSICS.md §3), which has no such split.
+fn axis_fraction(src: &Source, axis: DVec3) -> Result<Option<f64>, String> {
+    if src.polarization == crate::source::Polarization::Unpolarized {
+        return Ok(None);
+    }
     let chans = src.channels();
     let mut along = 0.0;
     for ch in &chans {
-        let r = ch.reference.normalize();
+        let crate::source::ChannelField::Linear {
+            reference,
+            angle_rad,
+        } = ch.field
+        else {
+            unreachable!("only basis-free unpolarized light has dipole channels")
+        };
+        let r = reference.normalize();
         if r.cross(axis).length() > 1e-12 {
             return Err(format!(
                 "source {:?}: its polarization reference must be the slit axis",
                 src.name
             ));
         }
-        let c = ch.angle_rad.cos();
+        let c = angle_rad.cos();
         if (c.abs() - 1.0).abs() > 1e-12 && c.abs() > 1e-12 {
             return Err(format!(
                 "source {:?}: polarization must be along or across the slit axis",
@@ -172,7 +191,7 @@ fn axis_fraction(src: &Source, axis: DVec3) -> Result<f64, String> {
         }
         along += ch.intensity * c * c;
     }
-    Ok(along / src.intensity)
+    Ok(Some(along / src.intensity))
 }
 
 fn point(target: &Target) -> Result<DVec3, String> {
@@ -201,10 +220,19 @@ pub fn value(
                 return Err("young_exact needs exactly two line sources of equal intensity".into());
             }
             let f = axis_fraction(ls[0].0, ls[0].2)?;
+            if axis_fraction(ls[1].0, ls[1].2)? != f {
+                return Err("young_exact needs two line sources of equal polarization".into());
+            }
             let p = point(target)?;
             let n = ambient_index(built, lambda_m)?;
+            let (s1, s2, axis) = (ls[0].1, ls[1].1, ls[0].2);
             Ok(ls[0].0.intensity
-                * analytic::young::exact_line_sources(ls[0].1, ls[1].1, ls[0].2, p, lambda_m, n, f))
+                * match f {
+                    Some(f) => analytic::young::exact_line_sources(s1, s2, axis, p, lambda_m, n, f),
+                    None => {
+                        analytic::young::exact_line_sources_basis_free(s1, s2, axis, p, lambda_m, n)
+                    }
+                })
         }
         ReferenceModel::YoungParaxial {} => {
             let ls = line_sources(built)?;
@@ -232,7 +260,7 @@ pub fn value(
         ReferenceModel::Lloyd {} | ReferenceModel::LloydVisibility {} => {
             let ls = line_sources(built)?;
             let (src, s, axis) = ls[0];
-            if axis_fraction(src, axis)? != 1.0 {
+            if axis_fraction(src, axis)? != Some(1.0) {
                 return Err(
                     "lloyd needs a line source polarized along its axis (s polarization)".into(),
                 );
@@ -291,25 +319,34 @@ pub fn value(
             let nrm = plane.normal;
             let mut horiz = p - s;
             horiz -= horiz.dot(nrm) * nrm;
-            let Some(crate::source::Polarization::Unpolarized { reference }) =
-                Some(src.polarization)
-            else {
-                return Err("two_beam_plate needs an unpolarized source".into());
+            // Basis-free light needs nothing more; the paper's two channels must be s and p.
+            let basis_free = match src.polarization {
+                crate::source::Polarization::Unpolarized => true,
+                crate::source::Polarization::UnpolarizedTwoChannel { reference } => {
+                    if reference.dot(horiz).abs() > 1e-9 * horiz.length()
+                        || reference.dot(nrm).abs() > 1e-12
+                    {
+                        return Err("two_beam_plate: the source's polarization reference must be perpendicular to every plane of incidence (the probe must lie in one plane of incidence)".into());
+                    }
+                    false
+                }
+                crate::source::Polarization::Linear { .. } => {
+                    return Err("two_beam_plate needs an unpolarized source".into());
+                }
             };
-            if reference.dot(horiz).abs() > 1e-9 * horiz.length()
-                || reference.dot(nrm).abs() > 1e-12
-            {
-                return Err("two_beam_plate: the source's polarization reference must be perpendicular to every plane of incidence (the probe must lie in one plane of incidence)".into());
-            }
             let t = analytic::plate::TwoBeamPlate {
                 n1,
                 n2: glass.index(lambda_m).map_err(|e| e.to_string())?,
-                thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
-                    .dot(nrm),
+                thickness_m: plate_thickness(scene, top, bottom),
                 h_src_m: plane.signed_distance(s),
                 h_obs_m: plane.signed_distance(p),
             };
-            Ok(src.intensity * t.intensity_unpolarized(horiz.length(), lambda_m))
+            Ok(src.intensity
+                * if basis_free {
+                    t.intensity_unpolarized_basis_free(horiz.length(), lambda_m)
+                } else {
+                    t.intensity_unpolarized(horiz.length(), lambda_m)
+                })
         }
         ReferenceModel::Airy {
             film,
@@ -450,7 +487,7 @@ fn airy(
     let p = d.cross(s);
     let mut total = 0.0;
     for ch in src.channels() {
-        let e = ch.field_direction(d);
+        let e = ch.launch_field(d);
         let (fs, fp) = (e.dot(s).powi(2), e.dot(p).powi(2));
         let (vs, vp) = if reflected {
             (
@@ -508,8 +545,7 @@ pub fn airy_film(
         n1: ix(m1)?,
         n2: ix(m2)?,
         n3: ix(m3)?,
-        thickness_m: (scene.surfaces[top].plane.point - scene.surfaces[bottom].plane.point)
-            .dot(nrm),
+        thickness_m: plate_thickness(scene, top, bottom),
     };
     let cos1 = d.dot(nrm).abs();
     // Beyond the critical angle of the top face the film carries only an evanescent wave
@@ -629,7 +665,7 @@ fn plane_wave_beams(
         let s = s_axis.unwrap_or_else(|| u.any_orthonormal_vector());
         let ph = analytic::path_phasor(op, lambda_m);
         for (ci, ch) in src.channels().iter().enumerate() {
-            let e0 = ch.field_direction(direction) * ch.intensity.sqrt();
+            let e0 = ch.launch_field(direction) * ch.intensity.sqrt();
             let p0 = direction.cross(s);
             let (a_s, a_p) = (e0.dot(s), e0.dot(p0));
             let p_out = u.cross(s);
@@ -705,7 +741,7 @@ fn michelson_ref(
         .channels()
         .iter()
         .map(|ch: &Channel| {
-            ch.intensity * michelson::intensity(&arms, s, p, lambda_m, n, |d| ch.field_direction(d))
+            ch.intensity * michelson::intensity(&arms, s, p, lambda_m, n, |d| ch.launch_field(d))
         })
         .sum())
 }

@@ -225,8 +225,27 @@ pub enum EmitterSpec {
 pub enum PolarizationSpec {
     /// Linear: `reference` projected perpendicular to each ray, rotated by `angle_deg` about it.
     Linear { reference: Vec3, angle_deg: f64 },
-    /// Two incoherent channels at 0° and 90° from `reference`.
-    Unpolarized { reference: Vec3 },
+    /// Unpolarized light. `model` `basis_free` (the default): three incoherent dipole
+    /// channels along x, y, z, no reference (docs/PHYSICS.md §3); `paper_two_channel`: the
+    /// paper's two incoherent channels at 0° and 90° from `reference` (required then, and only
+    /// then).
+    Unpolarized {
+        #[serde(default)]
+        model: UnpolarizedModel,
+        #[serde(default, skip_serializing_if = "Option::is_none")]
+        reference: Option<Vec3>,
+    },
+}
+
+/// The model of an unpolarized source (docs/PHYSICS.md §3).
+#[derive(Clone, Copy, Debug, Default, Deserialize, Serialize, PartialEq, Eq)]
+#[serde(rename_all = "snake_case")]
+pub enum UnpolarizedModel {
+    /// Three incoherent dipoles along x, y, z: independent of any basis.
+    #[default]
+    BasisFree,
+    /// The paper's two linear channels built from a reference vector.
+    PaperTwoChannel,
 }
 
 /// A source.

@@ -213,7 +213,7 @@ fn polarization(d: &mut Draws, reference: [f64; 3]) -> Value {
     match d.choose(3) {
         0 => json!({"linear": {"reference": reference, "angle_deg": 0.0}}),
         1 => json!({"linear": {"reference": reference, "angle_deg": d.real(-360.0, 360.0)}}),
-        _ => json!({"unpolarized": {"reference": reference}}),
+        _ => json!({"unpolarized": {"model": "paper_two_channel", "reference": reference}}),
     }
 }
 
@@ -244,7 +244,7 @@ fn young(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let centre = (fringe * d.real(-50.0, 50.0)).clamp(-REACH_M / 2.0, REACH_M / 2.0);
     let half = (fringe * d.log(1e-2, 10.0)).min(REACH_M / 2.0);
     let pol = match d.choose(3) {
-        0 => json!({"unpolarized": {"reference": [0, 0, 1]}}),
+        0 => json!({"unpolarized": {"model": "paper_two_channel", "reference": [0, 0, 1]}}),
         1 => json!({"linear": {"reference": [0, 0, 1], "angle_deg": 0.0}}),
         _ => {
             json!({"linear": {"reference": [0, 0, 1], "angle_deg": 90.0 * (d.choose(9) as f64 - 4.0)}})
@@ -334,7 +334,7 @@ fn two_beam_plate(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
                         "rect": {"size_m": [2.0 * w, 2.0 * w], "u_axis": [1, 0, 0]}}}
         ]),
         json!([{"name": "lamp", "emitter": {"point": {"position_m": [0, 0, hs]}},
-                "polarization": {"unpolarized": {"reference": [0, 1, 0]}}, "intensity": intensity(d)}]),
+                "polarization": {"unpolarized": {"model": "paper_two_channel", "reference": [0, 1, 0]}}, "intensity": intensity(d)}]),
         json!({"line": {"from_m": [x0, 0, ho], "to_m": [x1, 0, ho], "count": line_count(d)}}),
         json!({"two_beam_plate": {"plate": "plate"}}),
         json!({}),

@@ -127,7 +127,11 @@ fn check_builds(spec: &CaseFile) {
             assert!(ok, "source {} is not finite: {:?}", s.name, s.emitter);
             assert!(s.intensity.is_finite() && s.intensity > 0.0);
             for ch in s.channels() {
-                assert!(finite(ch.reference));
+                let v = match ch.field {
+                    fringe::source::ChannelField::Linear { reference, .. } => reference,
+                    fringe::source::ChannelField::Dipole { axis } => axis,
+                };
+                assert!(finite(v));
             }
         }
         let spectrum = build::spectrum(&spec.light, ov);

@@ -36,4 +36,5 @@ mod stability_report;
 mod tradeoff;
 mod trail;
 mod truth;
+mod unpolarized;
 mod young_two_point;

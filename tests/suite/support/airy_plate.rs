@@ -28,9 +28,7 @@ pub fn airy_plate(theta: f64) -> (Scene, Target) {
             direction: DVec3::new(s, 0.0, -c),
             reference_point: DVec3::new(0.0, 0.0, 0.001),
         },
-        polarization: Polarization::Unpolarized {
-            reference: DVec3::Y,
-        },
+        polarization: Polarization::Unpolarized,
         intensity: 1.0,
         coherence_group: 0,
         coherence_length_m: f64::INFINITY,
