@@ -32,7 +32,8 @@
 //! 1. **Scene** ([`scene::Scene`]): an ambient [`material::Medium`], planar surfaces
 //!    (interfaces, plates, wedges, mirrors, splitters, shields) and sources.
 //! 2. **Sources** ([`source::Source`]): point, line or plane-wave emitters, linearly polarized
-//!    or unpolarized (two mutually incoherent channels), grouped by coherence.
+//!    or unpolarized (basis-free: three mutually incoherent dipole channels along x, y, z; or
+//!    the paper's two channels from a reference), grouped by coherence.
 //! 3. **Exact paths** ([`trace::plan`], [`trace::arrivals`], [`path`]): the candidate surface
 //!    sequences of each source are discovered once per scene; for each observation point (or
 //!    far-field direction) every sequence is solved exactly, and each source channel's ray is
