@@ -12,14 +12,25 @@
 //!   far-field walk (each shared beginning traced once, O(m)) against tracing every order from
 //!   the source (`share_beginnings: false`, O(m²)).
 //!
+//! * `airy/spectrum/...`: a traced Airy spectrum, 401 wavelengths (400–800 nm) of a plane wave
+//!   on a free-standing plate (n = 1.7, 3.217 µm, 35°, unpolarized), orders from the tail
+//!   bound ε = 1e-12 at the middle wavelength, `vector`; throughput in spectral points.
+//!   `traced_once`: one trace, then the 401-λ phasor batch of each ray (`Beats::intensities`;
+//!   the test `beats::spectrum_traced_once_matches_airy_and_per_wavelength_traces` checks it
+//!   against Airy to 1e-12). `per_wavelength`: a trace at every wavelength (what a dispersive
+//!   plate needs), for the constant plate and for N-BK7 (Sellmeier). `traced_once_2t`: 16
+//!   such spectra (angles 20°–50°) on a 2-thread pool.
+//!
 //! Run: `cargo bench --bench airy`
 
 #[path = "../tests/suite/support/airy_plate.rs"]
 mod airy_plate;
 
-use airy_plate::airy_plate;
+use airy_plate::{airy_plate, airy_plate_of};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use fringe::analytic::plate::{Film, Pol};
+use fringe::beats::{Beats, vector_rays};
+use fringe::material::{Dispersion, Medium};
 use fringe::path::{EnumerationLimits, Target};
 use fringe::scene::Scene;
 use fringe::trace::{self, TraceSettings};
@@ -108,10 +119,123 @@ fn bench(c: &mut Criterion) {
     group.finish();
 }
 
+/// Orders and settings for the tail bound ε = 1e-12 of a plate of index `n` at `theta`.
+fn spectrum_settings(theta: f64, n: f64, thickness_m: f64, lambda_m: f64) -> TraceSettings {
+    let film = Film {
+        n1: 1.0,
+        n2: n,
+        n3: 1.0,
+        thickness_m,
+    };
+    let orders = [Pol::S, Pol::P]
+        .map(|p| film.orders_for_bound(theta.cos(), lambda_m, p, 1e-12))
+        .into_iter()
+        .max()
+        .unwrap();
+    settings(2 * orders + 1, true)
+}
+
+/// One traced-once spectrum into `out`.
+fn spectrum_once(
+    scene: &Scene,
+    target: &Target,
+    st: &TraceSettings,
+    lambdas: &[f64],
+    beats: &mut Beats,
+    out: &mut [f64],
+) {
+    let optics = scene.optics(lambdas[lambdas.len() / 2]).expect("indices");
+    let plan = trace::plan(scene, &optics, &[DVec3::new(0.0, 0.0, 0.001)], &st.limits);
+    let arrivals = trace::arrivals(scene, &optics, &plan, target, st).0;
+    beats.set(&vector_rays(&arrivals));
+    beats.intensities(lambdas, out);
+}
+
+fn bench_spectrum(c: &mut Criterion) {
+    const D: f64 = 3.217e-6;
+    let theta = 35f64.to_radians();
+    let lambdas: Vec<f64> = (0..401).map(|i| 400e-9 + 1e-9 * i as f64).collect();
+    let mid = lambdas[200];
+    let st = spectrum_settings(theta, 1.7, D, mid);
+    eprintln!(
+        "airy/spectrum: m = {} internal reflections for ε = 1e-12",
+        st.limits.max_internal_reflections
+    );
+    let (scene, target) = airy_plate_of(theta, Medium::constant("glass", 1.7), D);
+    let bk7 = Medium {
+        name: "N-BK7".into(),
+        dispersion: Dispersion::bk7(),
+    };
+    let n_bk7 = bk7.index(mid).unwrap();
+    let st_bk7 = spectrum_settings(theta, n_bk7, D, mid);
+    let (scene_bk7, target_bk7) = airy_plate_of(theta, bk7, D);
+    let mut group = c.benchmark_group("airy/spectrum");
+    group
+        .sample_size(10)
+        .measurement_time(Duration::from_secs(3));
+    group.throughput(Throughput::Elements(lambdas.len() as u64));
+    let mut beats = Beats::default();
+    let mut out = vec![0.0; lambdas.len()];
+    group.bench_function("traced_once", |b| {
+        b.iter(|| {
+            spectrum_once(&scene, &target, &st, &lambdas, &mut beats, &mut out);
+            black_box(&out);
+        })
+    });
+    let per_wavelength = |scene: &Scene, target: &Target, st: &TraceSettings| -> f64 {
+        lambdas
+            .iter()
+            .map(|&l| {
+                let optics = scene.optics(l).expect("indices");
+                let plan = trace::plan(scene, &optics, &[DVec3::new(0.0, 0.0, 0.001)], &st.limits);
+                let arr = trace::arrivals(scene, &optics, &plan, target, st).0;
+                trace::intensity(&arr, fringe::fidelity::Fidelity::Vector)
+            })
+            .sum()
+    };
+    group.bench_function("per_wavelength", |b| {
+        b.iter(|| black_box(per_wavelength(&scene, &target, &st)))
+    });
+    group.bench_function("bk7_per_wavelength", |b| {
+        b.iter(|| black_box(per_wavelength(&scene_bk7, &target_bk7, &st_bk7)))
+    });
+    // 16 spectra (angles 20°–50°) on two threads.
+    let spectra: Vec<(Scene, Target, TraceSettings)> = (0..16)
+        .map(|k| {
+            let th = (20.0 + 2.0 * k as f64).to_radians();
+            let (s, t) = airy_plate_of(th, Medium::constant("glass", 1.7), D);
+            (s, t, spectrum_settings(th, 1.7, D, mid))
+        })
+        .collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("rayon pool");
+    group.throughput(Throughput::Elements(16 * lambdas.len() as u64));
+    group.bench_function("traced_once_2t_16_spectra", |b| {
+        b.iter(|| {
+            use rayon::prelude::*;
+            pool.install(|| {
+                spectra
+                    .par_iter()
+                    .map_init(
+                        || (Beats::default(), vec![0.0; lambdas.len()]),
+                        |(beats, out), (s, t, st)| {
+                            spectrum_once(s, t, st, &lambdas, beats, out);
+                            out[0]
+                        },
+                    )
+                    .sum::<f64>()
+            })
+        })
+    });
+    group.finish();
+}
+
 criterion_group! {
     name = benches;
     // No plots: criterion's plotting needs system fonts this machine does not have.
     config = Criterion::default().without_plots();
-    targets = bench
+    targets = bench, bench_spectrum
 }
 criterion_main!(benches);

@@ -7,6 +7,7 @@ use crate::case::load::{self, Case, CaseError};
 use crate::case::run::{self, CaseResult};
 use crate::report::{self, GoldenError, Row};
 use crate::stability::{self, StabilityRow, Sweep};
+use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
 /// Output format of the verdict table.
@@ -234,7 +235,13 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         report::recover_bless(&opts.golden_dir)
             .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
     }
-    let results: Vec<CaseResult> = cases.iter().map(run::run).collect::<Result<_, _>>()?;
+    // The cases (each parallel over its probe points) and the stability sweep run side by
+    // side; the first failing case in file order is the error reported.
+    let (results, sweep) = rayon::join(
+        || cases.par_iter().map(run::run).collect::<Vec<_>>(),
+        stability::sweep,
+    );
+    let results: Vec<CaseResult> = results.into_iter().collect::<Result<_, _>>()?;
 
     let mut rows = Vec::new();
     let mut goldens = Vec::new();
@@ -320,7 +327,6 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     }
 
     // The stability sweep: judged like a case, its plot drawn before anything is written.
-    let sweep = stability::sweep();
     rows.extend(stability_table_rows(&sweep));
     let stability_png = report::plot::stability_paths_png(&sweep.paths).map_err(InputError)?;
 
@@ -329,7 +335,10 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
     let out_lock = report::lock_dir(&opts.out).map_err(|e| io(&opts.out, e))?;
     report::remove_stale_temp_files(&opts.out).map_err(|e| io(&opts.out, e))?;
-    for (case, r) in cases.iter().zip(&results) {
+    // Each case's files (in parallel: each case has its own folder), and beside them the
+    // paper's figures when the whole library runs (src/figures.rs); the first error in case
+    // order is reported.
+    let write_case = |(case, r): (&Case, &CaseResult)| -> Result<(), InputError> {
         let dir = opts.out.join(&r.name);
         report::remove_stale_temp_files(&dir).map_err(|e| io(&dir, e))?;
         let p = dir.join("profile.csv");
@@ -340,8 +349,23 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
                 .map_err(|e| io(&p, e))?;
         }
         // profile.png, convergence.png and probe pictures (src/report/html.rs).
-        report::html::write_case_files(&dir, case, r).map_err(InputError)?;
-    }
+        report::html::write_case_files(&dir, case, r).map_err(InputError)
+    };
+    let (written, figures) = rayon::join(
+        || {
+            cases
+                .par_iter()
+                .zip(&results)
+                .map(write_case)
+                .collect::<Vec<_>>()
+        },
+        || {
+            opts.cases.is_empty().then(|| {
+                crate::figures::generate(&opts.out, &crate::figures::FigureOptions::check_default())
+            })
+        },
+    );
+    written.into_iter().collect::<Result<(), _>>()?;
     let summary: Vec<report::CaseSummary> = results
         .iter()
         .zip(&work)
@@ -367,10 +391,8 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     report::write_atomic(&p, &stability_png).map_err(|e| io(&p, e))?;
     // The whole library also makes the paper's figures (src/figures.rs); then the one-page
     // report index.html embeds everything written above.
-    if opts.cases.is_empty() {
-        let m =
-            crate::figures::generate(&opts.out, &crate::figures::FigureOptions::check_default())
-                .map_err(InputError)?;
+    if let Some(m) = figures {
+        let m = m.map_err(InputError)?;
         for e in &m.fig8 {
             eprint!("{}", crate::figures::fig8_text(&e.left, &e.right, &e.stats));
         }

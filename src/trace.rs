@@ -115,6 +115,21 @@ pub struct Arrival {
     pub paper: Option<Ray>,
 }
 
+impl Arrival {
+    /// The same arrival at vacuum wavelength `lambda_m`. Tracing uses the wavelength only
+    /// through the scene's indices (`SceneOptics`) and stores it in the rays: where every index
+    /// and the target are unchanged (non-dispersive media), this is bit for bit the arrival a
+    /// new trace at `lambda_m` gives, so a spectrum is traced once.
+    pub fn at_wavelength(&self, lambda_m: f64) -> Arrival {
+        let mut a = self.clone();
+        a.vector.wavelength_m = lambda_m;
+        if let Some(p) = &mut a.paper {
+            p.wavelength_m = lambda_m;
+        }
+        a
+    }
+}
+
 /// A sequence that did not give a path, and why (for reports).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Failure {

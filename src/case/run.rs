@@ -523,6 +523,10 @@ pub(super) fn trace_point(
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
     let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
     let st = settings(case, &built, internal);
+    // The last traced sample's indices, target and arrivals: a sample with the same indices
+    // and target (non-dispersive media) has the same arrivals at its own wavelength
+    // ([`Arrival::at_wavelength`]), so a spectrum through such a scene is traced once.
+    let mut last: Option<(crate::scene::SceneOptics, Target, Vec<Arrival>)> = None;
     for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
         let optics = built
             .scene
@@ -530,7 +534,20 @@ pub(super) fn trace_point(
             .map_err(|e| case_err(case, "$.light", e.to_string()))?;
         let target = build::target(&pt.observer, &built, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?;
-        let arrivals = arrivals_at(&built, &optics, &target, &pt.observer, &st);
+        let arrivals = match &last {
+            Some((o, t, arr))
+                if *t == target
+                    && o.ambient_index == optics.ambient_index
+                    && o.surfaces == optics.surfaces =>
+            {
+                arr.iter().map(|a| a.at_wavelength(lambda_m)).collect()
+            }
+            _ => {
+                let arr = arrivals_at(&built, &optics, &target, &pt.observer, &st);
+                last = Some((optics, target, arr.clone()));
+                arr
+            }
+        };
         // |E|² → the observable the probe measures (R or T of a plane wave in the far field).
         let factor = reference::observable_factor(&pt.observer, &built, &target, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?;

@@ -53,6 +53,18 @@ impl Rgb8Image {
 
 /// Encode 8-bit sRGB pixels (row-major) as a PNG file.
 pub fn encode_png(width: usize, height: usize, pixels: &[[u8; 3]]) -> Result<Vec<u8>, String> {
+    encode_png_with(width, height, pixels, None)
+}
+
+/// [`encode_png`] with the given compression (`None`: the encoder's defaults, as
+/// [`encode_png`]): report plots (large, mostly white) use `Fast`; pictures keep the defaults,
+/// so their files are unchanged.
+pub fn encode_png_with(
+    width: usize,
+    height: usize,
+    pixels: &[[u8; 3]],
+    compression: Option<png::Compression>,
+) -> Result<Vec<u8>, String> {
     if pixels.len() != width * height || width == 0 || height == 0 {
         return Err(format!(
             "encode_png: {} pixels for a {width}x{height} picture",
@@ -65,6 +77,9 @@ pub fn encode_png(width: usize, height: usize, pixels: &[[u8; 3]]) -> Result<Vec
         enc.set_color(png::ColorType::Rgb);
         enc.set_depth(png::BitDepth::Eight);
         enc.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        if let Some(c) = compression {
+            enc.set_compression(c);
+        }
         let mut w = enc.write_header().map_err(|e| e.to_string())?;
         let flat: Vec<u8> = pixels.iter().flatten().copied().collect();
         w.write_image_data(&flat).map_err(|e| e.to_string())?;

@@ -6,7 +6,7 @@
 //! Text is drawn with DejaVu Sans shipped in `data/fonts/` (compiled in, so plots look the same
 //! on machines without system fonts; licence in `data/fonts/LICENSE`).
 
-use super::image::encode_png;
+use super::image::encode_png_with;
 use crate::case::run::CaseResult;
 use crate::case::spec::{Probe, SweepParameter};
 use crate::fidelity::Fidelity;
@@ -57,7 +57,12 @@ pub(crate) fn render_png(
         root.present().map_err(err)?;
     }
     let pixels: Vec<[u8; 3]> = buf.chunks_exact(3).map(|c| [c[0], c[1], c[2]]).collect();
-    encode_png(size.0 as usize, size.1 as usize, &pixels)
+    encode_png_with(
+        size.0 as usize,
+        size.1 as usize,
+        &pixels,
+        Some(png::Compression::Fast),
+    )
 }
 
 /// Line colour of a fidelity level (the same in every plot).

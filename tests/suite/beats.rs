@@ -263,3 +263,76 @@ fn many_beams_in_one_group_use_the_accumulator() {
     let want = (2.0 * (1.0 - 0.5f64.powi(6))).powi(2);
     assert!((got - want).abs() < 1e-14, "{got} vs {want}");
 }
+
+/// A spectrum traced once: a plane wave on a free-standing plate (n = 1.7, 3.217 µm, 35°,
+/// non-dispersive) has the same paths, Fresnel coefficients and orders at every wavelength, so
+/// its arrivals traced at the middle wavelength, with the reflected orders the amplitude tail
+/// bound ε = 1e-12 asks for (`Film::orders_for_bound`), give the whole 401-wavelength spectrum
+/// through `Beats::intensities`. It must agree with the Airy reflectance (R_s + R_p)/2
+/// (B&W §7.6.1, evaluated from the closed form, not the tracer) to 1e-12 at every wavelength,
+/// and with tracing every wavelength on its own (`trace::intensity`, compensated sums) to
+/// 1e-14.
+#[test]
+fn spectrum_traced_once_matches_airy_and_per_wavelength_traces() {
+    use crate::support::airy_plate::airy_plate_of;
+    use fringe::analytic::plate::{Film, Pol};
+    use fringe::fidelity::Fidelity;
+    use fringe::material::Medium;
+    use fringe::path::EnumerationLimits;
+    use fringe::trace::{self, TraceSettings};
+    use glam::DVec3;
+
+    let theta = 35f64.to_radians();
+    let film = Film {
+        n1: 1.0,
+        n2: 1.7,
+        n3: 1.0,
+        thickness_m: 3.217e-6,
+    };
+    let (scene, target) = airy_plate_of(theta, Medium::constant("glass", 1.7), film.thickness_m);
+    let lambdas: Vec<f64> = (0..401).map(|i| 400e-9 + 1e-9 * i as f64).collect();
+    let mid = lambdas[200];
+    let orders = [Pol::S, Pol::P]
+        .map(|p| film.orders_for_bound(theta.cos(), mid, p, 1e-12))
+        .into_iter()
+        .max()
+        .unwrap();
+    let m = 2 * orders + 1;
+    let st = TraceSettings {
+        limits: EnumerationLimits {
+            max_internal_reflections: m,
+            max_events: 2 * m + 8,
+        },
+        ..TraceSettings::default()
+    };
+    let trace_at = |lambda: f64| {
+        let optics = scene.optics(lambda).unwrap();
+        let plan = trace::plan(&scene, &optics, &[DVec3::new(0.0, 0.0, 0.001)], &st.limits);
+        trace::arrivals(&scene, &optics, &plan, &target, &st).0
+    };
+    let arrivals = trace_at(mid);
+    assert!(
+        arrivals.len() >= 2 * orders,
+        "every order within the bound arrives"
+    );
+    let mut beats = Beats::default();
+    beats.set(&fringe::beats::vector_rays(&arrivals));
+    let mut spectrum = vec![0.0; lambdas.len()];
+    beats.intensities(&lambdas, &mut spectrum);
+    let mut worst_airy = 0.0f64;
+    let mut worst_trace = 0.0f64;
+    for (k, (&l, &i)) in lambdas.iter().zip(&spectrum).enumerate() {
+        let airy = 0.5
+            * (film.reflectance(theta.cos(), l, Pol::S) + film.reflectance(theta.cos(), l, Pol::P));
+        worst_airy = worst_airy.max((i - airy).abs());
+        if k % 40 == 0 {
+            let traced = trace::intensity(&trace_at(l), Fidelity::Vector);
+            worst_trace = worst_trace.max((i - traced).abs());
+        }
+    }
+    assert!(worst_airy <= 1e-12, "max |I - R_Airy| = {worst_airy:e}");
+    assert!(
+        worst_trace <= 1e-14,
+        "max |I - I_traced(λ)| = {worst_trace:e}"
+    );
+}

@@ -11,14 +11,20 @@ use glam::DVec3;
 
 /// The scene and its specular far-field target.
 pub fn airy_plate(theta: f64) -> (Scene, Target) {
+    airy_plate_of(theta, Medium::constant("glass", 1.5), 2e-6)
+}
+
+/// The same scene with a plate of `glass`, `thickness_m` thick.
+#[allow(dead_code)] // used by benches/airy.rs and tests/suite/beats.rs, not by every includer
+pub fn airy_plate_of(theta: f64, glass: Medium, thickness_m: f64) -> (Scene, Target) {
     let mut scene = Scene::new(Medium::vacuum());
     scene.add_plate(
         "plate",
         DVec3::ZERO,
         DVec3::Z,
-        2e-6,
+        thickness_m,
         Medium::vacuum(),
-        Medium::constant("glass", 1.5),
+        glass,
         Medium::vacuum(),
     );
     let (s, c) = theta.sin_cos();
