@@ -50,6 +50,46 @@ impl Plane {
         (x - self.anchor).dot(self.normal) - self.height_m
     }
 
+    /// [`Plane::signed_distance`] without rounding before the end: exact coordinate differences
+    /// x − anchor, double-double products and sum, so the ~1e-16 m by which an f64 point misses
+    /// a tilted plane is resolved even 1 cm from the anchor (where the f64 dot product rounds at
+    /// ~1e-18 m).
+    pub fn signed_distance_precise(&self, x: DVec3) -> f64 {
+        use crate::double_double::{DoubleDouble, two_diff};
+        let d = [
+            two_diff(x.x, self.anchor.x),
+            two_diff(x.y, self.anchor.y),
+            two_diff(x.z, self.anchor.z),
+        ];
+        let n = self.normal;
+        let dot = d[0].mul_f64(n.x) + d[1].mul_f64(n.y) + d[2].mul_f64(n.z);
+        (dot - DoubleDouble::from(self.height_m)).to_f64()
+    }
+
+    /// The first-order change of an optical path when its point `x` on this plane, rounded off
+    /// it by ε = [`Plane::signed_distance_precise`], is moved back onto it along the normal (m of
+    /// optical path): with the path arriving along `u_in` in index `n_in` and leaving along
+    /// `u_out` in index `n_out` (any lengths: normalised here), the path n_in|x − a| +
+    /// n_out|b − x| (or a far-field projection) changes by ε N·(n_out û_out − n_in û_in).
+    /// An f64 point D from the origin lies only within ~ulp(D) of a tilted plane, a first-order
+    /// path error; this restores the path of the plane as held (anchor + height), leaving the
+    /// tangential rounding, second order by Fermat. Zero (exactly) for a point on the plane.
+    #[inline]
+    pub fn off_plane_path_correction(
+        &self,
+        x: DVec3,
+        (n_in, u_in): (f64, DVec3),
+        (n_out, u_out): (f64, DVec3),
+    ) -> f64 {
+        let eps = self.signed_distance_precise(x);
+        if eps == 0.0 {
+            return 0.0;
+        }
+        eps * self
+            .normal
+            .dot(n_out * u_out.normalize() - n_in * u_in.normalize())
+    }
+
     /// The distance from `other` to this plane along this plane's normal, when both are held
     /// from the same anchor with the same or the opposite normal (the faces of one plate):
     /// exactly the difference of their heights, no coordinates differenced.

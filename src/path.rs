@@ -1111,6 +1111,15 @@ fn finish(
         let len = if i + 1 < g.points.len() {
             let len = segment_length(a, g.points[i + 1]);
             optical_path += len.mul_f64(g.indices[i]);
+            // Event i's point back onto its plane (first order; as `FarFieldPaths` adds it).
+            if let Some(ev) = seq.get(i) {
+                optical_path +=
+                    DoubleDouble::from(scene.surfaces[ev.surface].plane.off_plane_path_correction(
+                        g.points[i + 1],
+                        (g.indices[i], g.dirs[i]),
+                        (g.indices[i + 1], g.dirs[i + 1]),
+                    ));
+            }
             len.to_f64()
         } else {
             f64::INFINITY
@@ -1276,6 +1285,12 @@ impl<'a> FarFieldPaths<'a> {
         // The finite segment k, from the last point to this event, as `finish` checks it.
         let length = segment_length(o, step.x);
         next.optical_path += length.mul_f64(n);
+        // The event's point back onto its plane (first order; as `finish` adds it).
+        next.optical_path += DoubleDouble::from(
+            self.scene.surfaces[ev.surface]
+                .plane
+                .off_plane_path_correction(step.x, (n, d), (step.n, step.d)),
+        );
         let len = length.to_f64();
         if next.out_of_extent.is_none() {
             next.out_of_extent = out_of_extent(self.scene, k, ev, step.x);

@@ -221,6 +221,29 @@ fn launch_ray(
     ray
 }
 
+/// Give `ray`, just through the event at `point` on surface `surface` (it arrived in index
+/// `n_in` along `u_in`), the first-order optical path of moving `point` back onto the plane as
+/// held ([`crate::geometry::Plane::off_plane_path_correction`]): an f64 hit point on a tilted
+/// plane far from the origin is ~1 ulp off it, a first-order path error the path solver's
+/// points carry too. Nothing (bit for bit) for a point on its plane.
+#[inline]
+fn onto_plane(
+    scene: &Scene,
+    surface: usize,
+    point: DVec3,
+    (n_in, u_in): (f64, DVec3),
+    ray: &mut Ray,
+) {
+    let c = scene.surfaces[surface].plane.off_plane_path_correction(
+        point,
+        (n_in, u_in),
+        (ray.index, ray.dir),
+    );
+    if c != 0.0 {
+        ray.optical_path += DoubleDouble::from(c);
+    }
+}
+
 /// The interface met by event `ev` at `point`.
 #[inline]
 fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> InterfaceHit {
@@ -291,8 +314,10 @@ pub fn propagate(
     let mut ray = launch_ray(optics, channel, coherence_length_m, path);
     for (ev, point) in events_of(path) {
         let hit = hit_at(scene, optics, ev, point);
+        let before = (ray.index, ray.dir);
         ray = interact_along(ray, &hit, model, ev.kind == EventKind::Reflect)
             .expect("solved paths only refract where a refracted ray exists");
+        onto_plane(scene, ev.surface, point, before, &mut ray);
     }
     end_ray(&mut ray, target, coherence_length_m);
     ray
@@ -376,21 +401,33 @@ impl ChannelRays {
     /// Through the interaction at `hit` along the followed branch (`reflect`: the reflected
     /// one); `others` is the number of channels besides the lead. False, with the rays partly
     /// updated, where the branch does not exist ([`interact_along`] gives `None`).
+    /// Each ray's optical path is then moved onto the event's plane ([`onto_plane`]).
     #[inline]
     fn interact(
         &mut self,
-        hit: &InterfaceHit,
+        scene: &Scene,
+        (ev, hit): (Event, &InterfaceHit),
         model: CoefficientModel,
-        reflect: bool,
         others: usize,
     ) -> bool {
+        let reflect = ev.kind == EventKind::Reflect;
         match self {
             ChannelRays::Together { lead, frames } => {
-                interact_along_shared(lead, &mut frames[..others], hit, model, reflect)
+                let before = (lead.index, lead.dir);
+                let ok = interact_along_shared(lead, &mut frames[..others], hit, model, reflect);
+                if ok {
+                    onto_plane(scene, ev.surface, hit.point, before, lead);
+                }
+                ok
             }
-            ChannelRays::Apart(rays) => rays
-                .iter_mut()
-                .all(|ray| interact_along_in_place(ray, hit, model, reflect)),
+            ChannelRays::Apart(rays) => rays.iter_mut().all(|ray| {
+                let before = (ray.index, ray.dir);
+                let ok = interact_along_in_place(ray, hit, model, reflect);
+                if ok {
+                    onto_plane(scene, ev.surface, hit.point, before, ray);
+                }
+                ok
+            }),
         }
     }
 
@@ -450,7 +487,7 @@ fn carry(
     let others = channels.len().saturating_sub(1);
     for (ev, point) in events_of(path) {
         let hit = hit_at(scene, optics, ev, point);
-        let ok = rays.interact(&hit, model, ev.kind == EventKind::Reflect, others);
+        let ok = rays.interact(scene, (ev, &hit), model, others);
         assert!(ok, "{NO_REFRACTED_RAY}");
     }
     rays
@@ -675,8 +712,7 @@ fn far_field_walk(
                             let (ev, point) = paths.event(k - 1);
                             let mut next = stack[k - 1].clone();
                             let hit = hit_at(scene, optics, ev, point);
-                            let ok =
-                                next.interact(&hit, model, ev.kind == EventKind::Reflect, others);
+                            let ok = next.interact(scene, (ev, &hit), model, others);
                             assert!(ok, "{NO_REFRACTED_RAY}");
                             stack.push(next);
                         }
