@@ -577,6 +577,8 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
     let mut center_arrivals = Vec::new();
     let mut center_target = None;
     let mut center = 0.0;
+    let mut acc = Accumulator::new();
+    let mut contributions = Vec::new();
     let (built, internal) = trace_point(case, pt, |built, spectrum, sample| {
         let Sample {
             index: k,
@@ -586,8 +588,17 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             factor,
             arrivals: arr,
         } = sample;
+        // `trace::intensity` of each level, with the accumulator and contributions reused
+        // (the same sums: a cleared accumulator is a new one).
+        let reference = arr.first().map(|a| a.vector.optical_path);
         for l in levels {
-            *out.intensity.get_mut(l).unwrap() += w * factor * trace::intensity(&arr, *l);
+            contributions.clear();
+            if let Some(r) = reference {
+                contributions.extend(arr.iter().map(|a| trace::contribution_from(a, *l, r)));
+            }
+            acc.clear();
+            acc.extend(&contributions);
+            *out.intensity.get_mut(l).unwrap() += w * factor * acc.intensity();
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity

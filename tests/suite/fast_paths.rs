@@ -604,3 +604,31 @@ fn normal_incidence_keeps_each_channels_frame_in_one_pass() {
         );
     }
 }
+
+proptest! {
+    #![proptest_config(config(64))]
+
+    /// Non-dispersive media: tracing at another wavelength gives the arrivals traced at 550 nm
+    /// with only their wavelength changed (`Arrival::at_wavelength`), bit for bit — paths,
+    /// fields, optical paths, ledgers and the paper's-rules rays. This is what lets `fringe
+    /// check` trace a spectrum through such a scene once per probe point.
+    #[test]
+    fn a_trace_at_another_wavelength_is_the_same_arrivals_relabelled(seed in any::<u64>()) {
+        let mut d = Draw(seed);
+        let (scene, st) = scene(&mut d);
+        let targets = targets(&mut d);
+        let l2 = d.range(400e-9, 800e-9);
+        let (o1, o2) = (scene.optics(LAMBDA).unwrap(), scene.optics(l2).unwrap());
+        let p1 = plan_for(&scene, &o1, &targets, &st);
+        let p2 = plan_for(&scene, &o2, &targets, &st);
+        for t in &targets {
+            let relabelled: Vec<trace::Arrival> = trace::arrivals(&scene, &o1, &p1, t, &st)
+                .0
+                .iter()
+                .map(|a| a.at_wavelength(l2))
+                .collect();
+            let traced = trace::arrivals(&scene, &o2, &p2, t, &st).0;
+            prop_assert_eq!(format!("{relabelled:?}"), format!("{traced:?}"), "at {:?}", t);
+        }
+    }
+}
