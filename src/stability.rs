@@ -919,7 +919,14 @@ fn film_rows(rows: &mut Vec<StabilityRow>, arithmetic: PathArithmetic) {
         traced - bare,
         film.reflectance(theta.cos(), WAVELENGTH_M, Pol::S) - bare,
         DeviationKind::Relative,
-        Some(1e-6),
+        // 1e-6 plus the rounding of the traced R itself, 16ε·R (the sum of ~20 beams, as in
+        // `film_tolerance`), relative to ΔR ~ 2e-11: the tracer's R(1 pm) is ~5e-17 off a
+        // 50-digit Airy sum, which the Stokes-form closed form meets to 2e-18 (a closed form
+        // that summed the series as the tracer does shared its rounding and hid it).
+        Some(
+            1e-6 + 16.0 * f64::EPSILON * bare
+                / (film.reflectance(theta.cos(), WAVELENGTH_M, Pol::S) - bare).abs(),
+        ),
     ));
 }
 

@@ -14,13 +14,33 @@ pub enum Pol {
     P,
 }
 
-/// Fresnel r, t for one polarization.
-fn rt(n1: f64, n2: f64, cos_i: f64, pol: Pol) -> (Complex64, Complex64) {
-    let f = fresnel(n1, n2, cos_i);
-    match pol {
-        Pol::S => (f.r_s, f.t_s),
-        Pol::P => (f.r_p, f.t_p),
+/// Fresnel r, t for one polarization from the cosines on both sides (P1)–(P4), in the
+/// conventions of [`crate::fresnel::fresnel`] (r_p = (n_b cos_a − n_a cos_b)/(n_b cos_a + n_a cos_b));
+/// `cos_b` imaginary beyond a critical angle. Equal indices: no interface (r = 0, t = 1).
+fn coefficients(
+    n_a: f64,
+    cos_a: Complex64,
+    n_b: f64,
+    cos_b: Complex64,
+    pol: Pol,
+) -> (Complex64, Complex64) {
+    if n_a == n_b {
+        return (Complex64::from(0.0), Complex64::from(1.0));
     }
+    let (num, den) = match pol {
+        Pol::S => (cos_a * n_a - cos_b * n_b, cos_a * n_a + cos_b * n_b),
+        Pol::P => (cos_a * n_b - cos_b * n_a, cos_a * n_b + cos_b * n_a),
+    };
+    if den == Complex64::from(0.0) {
+        // Exactly grazing incidence on a face (cos θa = cos θb = 0 is impossible for n_a ≠ n_b
+        // unless both vanish): R = 1, T = 0, the limit of (P1)–(P4).
+        let f = fresnel(n_a, n_b, cos_a.re);
+        return match pol {
+            Pol::S => (f.r_s, f.t_s),
+            Pol::P => (f.r_p, f.t_p),
+        };
+    }
+    (num / den, cos_a * (2.0 * n_a) / den)
 }
 
 /// A three-medium stack n1 | n2 (thickness d) | n3 lit from n1 at angle θ1.
@@ -46,19 +66,49 @@ pub struct AiryTerms {
     /// cos θ1 and cos θ3 (for the power ratio of transmission).
     pub cos1: f64,
     pub cos3: f64,
+    /// e^{iβ} and e^{iβ/2}, from β/2π = 2 n2 d cos θ2/λ formed in double-double and reduced to
+    /// a fraction of a cycle before rounding (the f64 `beta` of a 1 mm plate carries ~1e-12 rad).
+    pub round_trip: Complex64,
+    pub half_trip: Complex64,
 }
 
 impl Film {
     /// The Fresnel coefficients and round-trip phase at incidence cos θ1 (must not be TIR at
     /// the 1→2 interface).
     pub fn terms(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> AiryTerms {
-        let sin2_1 = 1.0 - cos_theta_1 * cos_theta_1;
-        let cos2 = (1.0 - sin2_1 * (self.n1 / self.n2).powi(2)).sqrt();
-        let c3sq = 1.0 - sin2_1 * (self.n1 / self.n3).powi(2);
-        let cos3 = c3sq.max(0.0).sqrt();
-        let (r12, t12) = rt(self.n1, self.n2, cos_theta_1, pol);
-        let (r21, t21) = rt(self.n2, self.n1, cos2, pol);
-        let (r23, t23) = rt(self.n2, self.n3, cos2, pol);
+        // Every cosine from cos θ1 by Snell's law, in double-double: cos²θk = 1 − (n1/nk)²
+        // sin²θ1. (Taking cos θ3 from a rounded cos θ2, as a chain of Fresnel kernels would,
+        // loses digits where the wave leaves the film near grazing: an ulp of cos θ2 moved R by
+        // 5e-15 at θ1 = 89.7°, found by the 50-digit test.)
+        let one = TwoFloat::from(1.0);
+        let sin2 = one - TwoFloat::new_mul(cos_theta_1, cos_theta_1);
+        let cos_sq = |nk: f64| {
+            let ratio = precise::div(TwoFloat::from(self.n1), TwoFloat::from(nk));
+            one - sin2 * ratio * ratio
+        };
+        let c2sq = cos_sq(self.n2);
+        let cos2_dd = if c2sq.hi() > 0.0 {
+            c2sq.sqrt()
+        } else {
+            TwoFloat::from(0.0)
+        };
+        let c3sq = cos_sq(self.n3);
+        let cos2 = f64::from(cos2_dd);
+        // Beyond the substrate's critical angle cos θ3 = +i sqrt(−cos²θ3) (e^{-iωt}, P5–P6).
+        let c3 = if c3sq.hi() >= 0.0 {
+            Complex64::from(f64::from(c3sq.sqrt()))
+        } else {
+            Complex64::new(0.0, f64::from((-c3sq).sqrt()))
+        };
+        let cos3 = c3.re;
+        let c1 = Complex64::from(cos_theta_1);
+        let c2 = Complex64::from(cos2);
+        let (r12, t12) = coefficients(self.n1, c1, self.n2, c2, pol);
+        let (r21, t21) = coefficients(self.n2, c2, self.n1, c1, pol);
+        let (r23, t23) = coefficients(self.n2, c2, self.n3, c3, pol);
+        // β/2π in double-double: 2 n2 d cos θ2/λ without rounding; whole cycles removed
+        // before the phasor.
+        let optical = cos2_dd * TwoFloat::new_mul(2.0 * self.n2, self.thickness_m);
         AiryTerms {
             r12,
             t12,
@@ -69,21 +119,27 @@ impl Film {
             beta: 4.0 * std::f64::consts::PI * self.n2 * self.thickness_m * cos2 / lambda_m,
             cos1: cos_theta_1,
             cos3,
+            round_trip: precise::path_phasor(optical, lambda_m),
+            half_trip: precise::path_phasor(optical * 0.5, lambda_m),
         }
     }
 
-    /// Airy reflection amplitude r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}) (docs/PHYSICS.md §5).
+    /// Airy reflection amplitude r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}) (docs/PHYSICS.md §5),
+    /// evaluated with the Stokes relations r21 = −r12, t12 t21 = 1 − r12² (exact identities of
+    /// (P1)–(P4)) as (r12 + r23 e^{iβ})/(1 + r12 r23 e^{iβ}): the sum of the series as written
+    /// relies on those identities holding to the last bit, and near grazing, where R → 1 and
+    /// t12 t21 → 0, f64 coefficients that satisfy them only to rounding cost ~40 ε of R
+    /// (found by the 50-digit test, `tests/suite/closed_form_precision.rs`).
     pub fn r(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
         let a = self.terms(cos_theta_1, lambda_m, pol);
-        let e = Complex64::from_polar(1.0, a.beta);
-        a.r12 + a.t12 * a.t21 * a.r23 * e / (1.0 - a.r21 * a.r23 * e)
+        let e = a.round_trip;
+        (a.r12 + a.r23 * e) / (1.0 + a.r12 * a.r23 * e)
     }
 
-    /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}).
+    /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}), with r21 = −r12.
     pub fn t(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
         let a = self.terms(cos_theta_1, lambda_m, pol);
-        let e = Complex64::from_polar(1.0, a.beta);
-        a.t12 * a.t23 * Complex64::from_polar(1.0, 0.5 * a.beta) / (1.0 - a.r21 * a.r23 * e)
+        a.t12 * a.t23 * a.half_trip / (1.0 + a.r12 * a.r23 * a.round_trip)
     }
 
     /// Reflectance R = |r|².
@@ -110,18 +166,21 @@ impl Film {
         orders: usize,
     ) -> Complex64 {
         let a = self.terms(cos_theta_1, lambda_m, pol);
-        let mut sum = if orders > 0 {
-            a.r12
-        } else {
-            Complex64::default()
-        };
-        let mut term = a.t12 * a.t21 * a.r23 * Complex64::from_polar(1.0, a.beta);
-        let q = a.r21 * a.r23 * Complex64::from_polar(1.0, a.beta);
-        for _ in 1..orders {
-            sum += term;
-            term *= q;
+        if orders == 0 {
+            return Complex64::default();
         }
-        sum
+        // Orders 1 … orders−1 summed as a geometric series in closed form,
+        // t12 t21 r23 e^{iβ} (1 − q^{orders−1})/(1 − q), q = r21 r23 e^{iβ}, with the Stokes
+        // relations r21 = −r12, t12 t21 = (1 − r12)(1 + r12) as in [`Film::r`]: summing term by
+        // term rounds each of ~100 terms of a high-finesse film and left the partial sum
+        // 1.5e-15 off a 50-digit one (R ≈ 0.7), more than the tail it is meant to show.
+        let first = (1.0 - a.r12) * (1.0 + a.r12) * a.r23 * a.round_trip;
+        let q = -a.r12 * a.r23 * a.round_trip;
+        let n = u32::try_from(orders - 1).unwrap_or(u32::MAX);
+        if q == Complex64::from(1.0) {
+            return a.r12 + first * f64::from(n);
+        }
+        a.r12 + first * (1.0 - q.powu(n)) / (1.0 - q)
     }
 
     /// Bound on the amplitude of the reflected orders left out after `orders` beams:

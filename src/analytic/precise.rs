@@ -61,6 +61,51 @@ pub fn path_phasor(s_m: TwoFloat, lambda_m: f64) -> Complex64 {
     crate::accumulate::phasor_from_cycles(frac)
 }
 
+/// A unit vector in double-double: `v/|v|` (any nonzero length).
+pub fn unit(v: DVec3) -> [TwoFloat; 3] {
+    let len =
+        (TwoFloat::new_mul(v.x, v.x) + TwoFloat::new_mul(v.y, v.y) + TwoFloat::new_mul(v.z, v.z))
+            .sqrt();
+    [
+        div(v.x.into(), len),
+        div(v.y.into(), len),
+        div(v.z.into(), len),
+    ]
+}
+
+/// The dot product of two double-double vectors.
+pub fn dot2(a: &[TwoFloat; 3], b: &[TwoFloat; 3]) -> TwoFloat {
+    a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
+}
+
+/// The direction reflected at a plane of unit normal `n` (either orientation):
+/// u − 2 (u·n) n (docs/PHYSICS.md §1), in double-double.
+pub fn reflect(u: &[TwoFloat; 3], n: &[TwoFloat; 3]) -> [TwoFloat; 3] {
+    let k = dot2(u, n) * 2.0;
+    [u[0] - k * n[0], u[1] - k * n[1], u[2] - k * n[2]]
+}
+
+/// The direction refracted from index `n1` into `n2` at a plane of unit normal `n` (either
+/// orientation) by Snell's law in vector form, η u + (η cos θi − cos θt) N_o with N_o facing the
+/// incident side and η = n1/n2, in double-double; `None` under total internal reflection.
+pub fn refract(u: &[TwoFloat; 3], n: &[TwoFloat; 3], n1: f64, n2: f64) -> Option<[TwoFloat; 3]> {
+    let un = dot2(u, n);
+    let n_o = if un.hi() < 0.0 {
+        *n
+    } else {
+        [-n[0], -n[1], -n[2]]
+    };
+    let cos_i = -dot2(u, &n_o);
+    let eta = div(n1.into(), n2.into());
+    let one = TwoFloat::from(1.0);
+    let c2t = one - eta * eta * (one - cos_i * cos_i);
+    if c2t.hi() < 0.0 {
+        return None;
+    }
+    let k = eta * cos_i - c2t.sqrt();
+    Some([0, 1, 2].map(|i| eta * u[i] + k * n_o[i]))
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

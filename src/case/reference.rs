@@ -283,19 +283,17 @@ pub fn value(
                 n2.index(lambda_m).map_err(|e| e.to_string())?,
             );
             let p = point(target)?;
-            let nrm = mirror.plane.normal * h.signum();
-            let y = (p - mirror.plane.point).dot(nrm);
-            let mut horiz = p - s;
-            horiz -= horiz.dot(nrm) * nrm + horiz.dot(axis) * axis;
             let l = analytic::lloyd::Lloyd {
                 n1,
                 n2,
-                h_m: h.abs(),
-                l_m: horiz.length(),
+                source: s,
+                axis,
+                mirror_point: mirror.plane.point,
+                normal: mirror.plane.normal,
             };
             Ok(match model {
-                ReferenceModel::Lloyd {} => src.intensity * l.intensity(y, lambda_m),
-                _ => l.visibility(y),
+                ReferenceModel::Lloyd {} => src.intensity * l.intensity(p, lambda_m),
+                _ => l.visibility(p),
             })
         }
         ReferenceModel::TwoBeamPlate { plate } => {
@@ -355,15 +353,13 @@ pub fn value(
         ReferenceModel::Wedge { wedge } => {
             let (top, bottom, [above, glass, below]) = layer_media(built, wedge)?;
             let (tp, bp) = (&scene.surfaces[top].plane, &scene.surfaces[bottom].plane);
-            let (d, reference) = plane_wave(scene).ok_or("wedge needs a plane-wave source")?;
+            let (d, _) = plane_wave(scene).ok_or("wedge needs a plane-wave source")?;
             if (d + tp.normal).length() > 1e-12 {
                 return Err(
                     "wedge needs the plane wave at normal incidence on the top face".into(),
                 );
             }
-            let alpha = crate::geometry::angle_between(tp.normal, bp.normal);
             let hinge = tp.normal.cross(bp.normal).normalize();
-            let x_axis = hinge.cross(tp.normal);
             let src = &scene.sources[0];
             // The hinge of a wedge of angle α is known to ~1e-16/α rad from its two normals;
             // a field ε off the hinge changes the intensity by O(ε²), so 1e-7 is exact enough.
@@ -378,13 +374,12 @@ pub fn value(
                 n1: ix(above)?,
                 n: ix(glass)?,
                 n3: ix(below)?,
-                alpha_rad: alpha,
-                t0_m: -tp.signed_distance(bp.point),
-                h_src_m: tp.signed_distance(reference),
-                h_obs_m: tp.signed_distance(p),
+                top_point: tp.point,
+                top_normal: tp.normal,
+                bottom_point: bp.point,
+                bottom_normal: bp.normal,
             };
-            let x = (p - tp.point).dot(x_axis);
-            Ok(src.intensity * w.intensity_s(x, lambda_m))
+            Ok(src.intensity * w.intensity_s(p, lambda_m))
         }
         ReferenceModel::RhombRetardance {
             glass,
@@ -594,8 +589,9 @@ fn plane_wave_beams(
         };
         let mut u = direction;
         let mut n = scene.ambient.index(lambda_m).map_err(|e| e.to_string())?;
-        let mut q = reference_point;
-        let mut op = 0.0;
+        // The optical path: [`analytic::tir::plane_wave_path`], double-double.
+        let n0 = n;
+        let mut faces = Vec::new();
         let mut amp_s = Complex64::from(1.0);
         let mut amp_p = Complex64::from(1.0);
         let mut s_axis: Option<DVec3> = None;
@@ -639,8 +635,13 @@ fn plane_wave_beams(
                 _ => {}
             }
             let f = fresnel::fresnel(n1, n2, cos_i);
-            op += n * u.dot(surf.plane.point - q);
-            q = surf.plane.point;
+            faces.push(analytic::tir::Face {
+                point: surf.plane.point,
+                normal: nrm,
+                n_before: n1,
+                n_after: n2,
+                reflect: ev.reflect,
+            });
             if ev.reflect {
                 u = fresnel::reflect(u, nrm);
                 amp_s *= f.r_s;
@@ -653,17 +654,22 @@ fn plane_wave_beams(
                 n = n2;
             }
         }
-        op += match target {
-            Target::Point(x) => n * u.dot(*x - q),
+        let x = match target {
+            Target::Point(x) => *x,
             Target::Direction { dir, reference } => {
                 if u.cross(*dir).length() > 1e-9 {
                     continue; // this beam does not reach the far-field direction
                 }
-                n * u.dot(*reference - q)
+                *reference
             }
         };
+        let (op, _) = analytic::tir::plane_wave_path(direction, reference_point, n0, &faces, x)
+            .ok_or(format!(
+                "beam from {:?}: total internal reflection on a refraction event",
+                b.source
+            ))?;
         let s = s_axis.unwrap_or_else(|| u.any_orthonormal_vector());
-        let ph = analytic::path_phasor(op, lambda_m);
+        let ph = analytic::precise::path_phasor(op, lambda_m);
         for (ci, ch) in src.channels().iter().enumerate() {
             let e0 = ch.launch_field(direction) * ch.intensity.sqrt();
             let p0 = direction.cross(s);
