@@ -194,6 +194,7 @@ impl Scene {
     /// A plane-parallel plate: top face through `top_point` with outward normal `normal`,
     /// thickness `thickness_m`, `medium` inside, `above` over it and `below` under it.
     /// Returns the indices of (top, bottom).
+    #[allow(clippy::too_many_arguments)]
     pub fn add_plate(
         &mut self,
         name: &str,
