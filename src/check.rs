@@ -484,6 +484,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             trace_seconds: r.trace_seconds,
             work_units,
             rows: rows.iter().filter(|x| x.case == r.name).cloned().collect(),
+            point_values: report::point_values(r),
         })
         .collect();
     let p = opts.out.join("summary.json");

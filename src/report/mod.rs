@@ -491,6 +491,40 @@ pub struct CaseSummary<'a> {
     /// `trace_seconds`.
     pub work_units: f64,
     pub rows: Vec<Row>,
+    /// The metrics with one value (a retardance, a fringe spacing, a visibility): the page
+    /// shows their numbers, as they have no profile to plot.
+    pub point_values: Vec<PointValue>,
+}
+
+/// A single-valued metric of a case: its closed form and what every level traced.
+#[derive(Serialize)]
+pub struct PointValue {
+    /// The reference's name in the case file.
+    pub metric: String,
+    /// What is measured, with its unit (e.g. "retardance arg E_p − arg E_s (rad)").
+    pub quantity: &'static str,
+    /// The closed-form value.
+    pub closed_form: f64,
+    /// The traced value per fidelity level (levels where the metric is undefined are absent).
+    pub traced: Vec<(String, f64)>,
+}
+
+/// The [`PointValue`]s of a case result: every metric evaluated at a single coordinate.
+pub fn point_values(r: &CaseResult) -> Vec<PointValue> {
+    r.metrics
+        .iter()
+        .filter(|m| m.analytic.len() == 1)
+        .map(|m| PointValue {
+            metric: m.name.clone(),
+            quantity: m.quantity(r.observable),
+            closed_form: m.analytic[0],
+            traced: m
+                .traced
+                .iter()
+                .filter_map(|(l, v)| Some((l.name().to_string(), *v.first()?)))
+                .collect(),
+        })
+        .collect()
 }
 
 /// Print rows as an aligned table.
