@@ -13,18 +13,27 @@ use std::path::{Path, PathBuf};
 /// Output format of the verdict table.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Format {
+    /// Aligned text columns, one row per case × fidelity × observable.
     Table,
+    /// One pretty-printed JSON array of the rows.
     Json,
 }
 
 /// Options of a check run.
 #[derive(Clone, Debug)]
 pub struct CheckOptions {
+    /// Case names from the library or paths to case files; empty: the whole library.
     pub cases: Vec<String>,
+    /// The case library folder (default [`library_root`]`/cases`).
     pub cases_dir: PathBuf,
-    pub golden_dir: PathBuf,
+    /// The golden folder of every case; `None`: [`golden_dir_for`] (the library's `golden/`
+    /// for library cases, a `golden/` folder beside any other case file).
+    pub golden_dir: Option<PathBuf>,
+    /// Output folder of the reports.
     pub out: PathBuf,
+    /// Format of the verdict table on stdout.
     pub format: Format,
+    /// Rewrite the golden files from this run (only if it passes).
     pub bless: bool,
 }
 
@@ -38,14 +47,101 @@ impl From<CaseError> for InputError {
     }
 }
 
-/// Resolve `CASE` arguments: a library name (`cases/<name>.json`) or a path to a case file.
+/// The environment variable naming the folder that holds `cases/`, `golden/` and `figures/`.
+pub const ROOT_VARIABLE: &str = "FRINGE_ROOT";
+
+/// The folder the case library (`cases/`), its golden files (`golden/`) and the figure scenes
+/// (`figures/`) are found in when no folder is given on the command line: `$FRINGE_ROOT` if
+/// set, else the checkout the binary was built from (so `cargo run`, `target/release/fringe`
+/// and `cargo install --path .` work from any directory), else the current directory.
+///
+/// The library is resolved rather than compiled in so that `--bless` keeps writing the
+/// repository's `golden/` files and an edited case file takes effect without a rebuild.
+pub fn library_root() -> PathBuf {
+    if let Some(r) = std::env::var_os(ROOT_VARIABLE).filter(|r| !r.is_empty()) {
+        return PathBuf::from(r);
+    }
+    let built = Path::new(env!("CARGO_MANIFEST_DIR"));
+    if built.join("cases").is_dir() {
+        return built.to_path_buf();
+    }
+    PathBuf::from(".")
+}
+
+/// The golden folder of a case file: `--golden-dir` when given; else `golden/` beside the
+/// library (`<cases_dir>/../golden`) for a case of the library `cases_dir`, and `golden/` in the
+/// case file's own folder for any other case file (`path/to/case.json` →
+/// `path/to/golden/<name>.csv`).
+pub fn golden_dir_for(opts: &CheckOptions, file: &Path) -> PathBuf {
+    if let Some(g) = &opts.golden_dir {
+        return g.clone();
+    }
+    if in_library(&opts.cases_dir, file) {
+        return library_golden_dir(&opts.cases_dir);
+    }
+    file.parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."))
+        .join("golden")
+}
+
+/// `golden/` beside a library folder.
+fn library_golden_dir(cases_dir: &Path) -> PathBuf {
+    let parent = cases_dir.parent().filter(|p| !p.as_os_str().is_empty());
+    parent.unwrap_or(Path::new(".")).join("golden")
+}
+
+/// Whether `file` sits directly in the library folder `cases_dir`.
+fn in_library(cases_dir: &Path, file: &Path) -> bool {
+    let folder = file.parent().filter(|p| !p.as_os_str().is_empty());
+    let folder = folder.unwrap_or(Path::new("."));
+    match (folder.canonicalize(), cases_dir.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    }
+}
+
+/// The case names of a library folder (its `*.json` files but `schema.json`), sorted.
+pub fn library_names(cases_dir: &Path) -> Vec<String> {
+    let mut names: Vec<String> = std::fs::read_dir(cases_dir)
+        .into_iter()
+        .flatten()
+        .filter_map(|e| e.ok().map(|e| e.path()))
+        .filter(|p| p.extension().is_some_and(|x| x == "json"))
+        .filter_map(|p| p.file_stem().and_then(|s| s.to_str()).map(String::from))
+        .filter(|n| n != "schema")
+        .collect();
+    names.sort();
+    names
+}
+
+/// ", did you mean `x`?" for the known name closest to `name` (Damerau–Levenshtein distance at
+/// most a third of the name's length, at least 2), else "".
+pub fn did_you_mean<'a>(name: &str, known: impl IntoIterator<Item = &'a str>) -> String {
+    let limit = (name.chars().count() / 3).max(2);
+    known
+        .into_iter()
+        .map(|k| (strsim::damerau_levenshtein(name, k), k))
+        .filter(|&(d, _)| d <= limit)
+        .min()
+        .map(|(_, k)| format!("; did you mean `{k}`? (`fringe list` shows the library)"))
+        .unwrap_or_default()
+}
+
+/// Resolve `CASE` arguments: a library name (`<cases_dir>/<name>.json`) or a path to a case
+/// file; none: every case of the library.
 pub fn resolve(opts: &CheckOptions) -> Result<Vec<PathBuf>, InputError> {
-    if opts.cases.is_empty() {
-        let mut files: Vec<PathBuf> = std::fs::read_dir(&opts.cases_dir)
+    resolve_cases(&opts.cases, &opts.cases_dir)
+}
+
+/// [`resolve`] for a list of names and a library folder.
+pub fn resolve_cases(cases: &[String], cases_dir: &Path) -> Result<Vec<PathBuf>, InputError> {
+    if cases.is_empty() {
+        let mut files: Vec<PathBuf> = std::fs::read_dir(cases_dir)
             .map_err(|e| {
                 InputError(format!(
                     "{}: cannot list the case library: {e}",
-                    opts.cases_dir.display()
+                    cases_dir.display()
                 ))
             })?
             .filter_map(|e| e.ok().map(|e| e.path()))
@@ -58,12 +154,12 @@ pub fn resolve(opts: &CheckOptions) -> Result<Vec<PathBuf>, InputError> {
         if files.is_empty() {
             return Err(InputError(format!(
                 "{}: the case library is empty (no *.json case files)",
-                opts.cases_dir.display()
+                cases_dir.display()
             )));
         }
         return Ok(files);
     }
-    opts.cases
+    cases
         .iter()
         .map(|c| {
             let as_path = Path::new(c);
@@ -77,13 +173,15 @@ pub fn resolve(opts: &CheckOptions) -> Result<Vec<PathBuf>, InputError> {
                 && c.chars()
                     .all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_')
             {
-                let p = opts.cases_dir.join(format!("{c}.json"));
+                let p = cases_dir.join(format!("{c}.json"));
                 if p.is_file() {
                     Ok(p)
                 } else {
+                    let known = library_names(cases_dir);
                     Err(InputError(format!(
-                        "{c}: no case of that name in {}",
-                        opts.cases_dir.display()
+                        "{c}: no case of that name in {}{}",
+                        cases_dir.display(),
+                        did_you_mean(c, known.iter().map(String::as_str))
                     )))
                 }
             } else {
@@ -197,6 +295,29 @@ pub fn stability_table_rows(sweep: &Sweep) -> Vec<Row> {
     out
 }
 
+/// The command that blesses one case of this run: its library name (with `--cases-dir` when
+/// the library is not the default one) or its file path, and `--golden-dir` when one was given.
+fn bless_command(opts: &CheckOptions, file: &Path, name: &str) -> String {
+    let mut cmd = if in_library(&opts.cases_dir, file) {
+        let default = library_root().join("cases");
+        if in_library(&default, file) {
+            format!("fringe check {name}")
+        } else {
+            format!(
+                "fringe check {name} --cases-dir {}",
+                opts.cases_dir.display()
+            )
+        }
+    } else {
+        format!("fringe check {}", file.display())
+    };
+    if let Some(g) = &opts.golden_dir {
+        cmd.push_str(&format!(" --golden-dir {}", g.display()));
+    }
+    cmd.push_str(" --bless");
+    cmd
+}
+
 /// Load every case (all must be valid before anything runs), run them, compare, write.
 pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     let files = resolve(opts)?;
@@ -224,16 +345,23 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         ))
     };
     report::probe_writable(&opts.out).map_err(|e| unwritable("--out", &opts.out, e))?;
-    if opts.bless {
-        report::probe_writable(&opts.golden_dir)
-            .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
+    // Each case's golden folder (`golden_dir_for`), and the distinct folders in first-seen order.
+    let golden_dirs: Vec<PathBuf> = files.iter().map(|f| golden_dir_for(opts, f)).collect();
+    let mut golden_folders: Vec<&PathBuf> = Vec::new();
+    for g in &golden_dirs {
+        if !golden_folders.contains(&g) {
+            golden_folders.push(g);
+        }
     }
-    // A bless interrupted by a kill is finished (or undone) before goldens are read.
-    if opts.golden_dir.join(report::BLESS_STAGE).exists() {
-        let _lock = report::lock_dir(&opts.golden_dir)
-            .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
-        report::recover_bless(&opts.golden_dir)
-            .map_err(|e| unwritable("--golden-dir", &opts.golden_dir, e))?;
+    for &g in &golden_folders {
+        if opts.bless {
+            report::probe_writable(g).map_err(|e| unwritable("the golden folder", g, e))?;
+        }
+        // A bless interrupted by a kill is finished (or undone) before goldens are read.
+        if g.join(report::BLESS_STAGE).exists() {
+            let _lock = report::lock_dir(g).map_err(|e| unwritable("the golden folder", g, e))?;
+            report::recover_bless(g).map_err(|e| unwritable("the golden folder", g, e))?;
+        }
     }
     // The cases (each parallel over its probe points) and the stability sweep run side by
     // side; the first failing case in file order is the error reported.
@@ -245,7 +373,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
 
     let mut rows = Vec::new();
     let mut goldens = Vec::new();
-    for (case, r) in cases.iter().zip(&results) {
+    for (k, (case, r)) in cases.iter().zip(&results).enumerate() {
         let mut case_rows = report::rows(r);
         // A NaN deviation compares false with every tolerance and would read as a pass: any
         // non-finite traced or closed-form value fails the case.
@@ -276,7 +404,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
                 note: format!("non-finite values in {}", non_finite.join(", ")),
             });
         }
-        let golden_path = opts.golden_dir.join(format!("{}.csv", r.name));
+        let golden_path = golden_dirs[k].join(format!("{}.csv", r.name));
         let text = report::golden_csv(r);
         // The case's golden tolerance, or its values' conditioning when larger (golden files
         // are reproducible across CPUs to their conditioning, not bit for bit).
@@ -293,16 +421,16 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             note,
         };
         if opts.bless {
-            goldens.push((format!("{}.csv", r.name), text));
+            goldens.push((&golden_dirs[k], format!("{}.csv", r.name), text));
         } else {
             match std::fs::read_to_string(&golden_path) {
                 Err(_) => case_rows.push(golden_row(
                     false,
                     1.0,
                     format!(
-                        "no golden file {}: run `fringe check {} --bless` to create it",
+                        "no golden file {}: run `{}` to create it",
                         golden_path.display(),
-                        r.name
+                        bless_command(opts, &files[k], &r.name)
                     ),
                 )),
                 Ok(g) => match report::compare_golden(r, &g, golden_tolerance) {
@@ -380,6 +508,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             trace_seconds: r.trace_seconds,
             work_units,
             rows: rows.iter().filter(|x| x.case == r.name).cloned().collect(),
+            point_values: report::point_values(r),
         })
         .collect();
     let p = opts.out.join("summary.json");
@@ -410,8 +539,16 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     // files are written as one set.
     let bless_refused = opts.bless && !failed_cases.is_empty();
     if opts.bless && !bless_refused {
-        let _lock = report::lock_dir(&opts.golden_dir).map_err(|e| io(&opts.golden_dir, e))?;
-        report::bless_set(&opts.golden_dir, &goldens).map_err(|e| io(&opts.golden_dir, e))?;
+        for &g in &golden_folders {
+            let set: Vec<(String, String)> = goldens
+                .iter()
+                .filter(|(dir, _, _)| *dir == g)
+                .map(|(_, name, text)| (name.clone(), text.clone()))
+                .collect();
+            std::fs::create_dir_all(g).map_err(|e| io(g, e))?;
+            let _lock = report::lock_dir(g).map_err(|e| io(g, e))?;
+            report::bless_set(g, &set).map_err(|e| io(g, e))?;
+        }
     }
     Ok(CheckOutcome {
         rows,

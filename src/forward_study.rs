@@ -224,6 +224,22 @@ pub struct StudyRow {
 
 /// Run the study: every scene × pixel count × ray count × estimator.
 pub fn run(seed: u64, ray_counts: &[usize], pixel_counts: &[usize]) -> Vec<StudyRow> {
+    run_observed(seed, ray_counts, pixel_counts, || {})
+}
+
+/// The number of traced settings of [`run`] (scenes × pixel counts × ray counts): the steps
+/// [`run_observed`] reports.
+pub fn steps(ray_counts: &[usize], pixel_counts: &[usize]) -> usize {
+    3 * ray_counts.len() * pixel_counts.len()
+}
+
+/// [`run`], calling `step` after each traced setting (for a progress display).
+pub fn run_observed(
+    seed: u64,
+    ray_counts: &[usize],
+    pixel_counts: &[usize],
+    mut step: impl FnMut(),
+) -> Vec<StudyRow> {
     let estimators = [
         Estimator::NaiveRays,
         Estimator::LandingPhase,
@@ -275,6 +291,7 @@ pub fn run(seed: u64, ray_counts: &[usize], pixel_counts: &[usize]) -> Vec<Study
                         seconds: trace_s + t1.elapsed().as_secs_f64(),
                     });
                 }
+                step();
             }
         }
     }

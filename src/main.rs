@@ -90,38 +90,71 @@ impl IlluminantArg {
 
 #[derive(Subcommand)]
 enum Command {
+    /// Run cases against their closed forms and golden files; exit 0 if all pass, 1 if a case
+    /// fails, 2 on bad input. The verdict table goes to stdout, diagnostics to stderr.
+    Check {
+        /// Case names from the library (`fringe list`) or paths to case files; none: the whole
+        /// library.
+        cases: Vec<String>,
+        /// Output folder of the reports (profile.csv per case, summary.json, index.html).
+        #[arg(short = 'o', long, default_value = "reports")]
+        out: PathBuf,
+        /// Format of the verdict table on stdout.
+        #[arg(long, value_enum, default_value = "table")]
+        format: FormatArg,
+        /// Rewrite the golden files from this run (the only way golden files change; only a
+        /// passing run is written). A library case's golden file is <root>/golden/<case>.csv;
+        /// a case file elsewhere gets golden/<case>.csv in its own folder.
+        #[arg(long)]
+        bless: bool,
+        /// The case library folder [default: $FRINGE_ROOT/cases, else the cases/ of the
+        /// checkout the binary was built from].
+        #[arg(long)]
+        cases_dir: Option<PathBuf>,
+        /// The golden folder of every case given [default: see --bless].
+        #[arg(long)]
+        golden_dir: Option<PathBuf>,
+    },
+    /// The case library: one line per case with its description (stdout).
+    List {
+        /// The case library folder [default: as for `check`].
+        #[arg(long)]
+        cases_dir: Option<PathBuf>,
+    },
     /// Render a case's picture (grid probe; a line probe becomes a strip): every pixel traced
     /// exactly, monochrome in the case's light or colour in white light (--samples).
     Render {
-        /// A case name (cases/ or figures/) or a path to a case file.
+        /// A case name (the library or the figure scenes in figures/) or a path to a case file.
         case: String,
         /// Fidelity level(s), comma-separated: incoherent, scalar, scalar_jump, paper_rules,
         /// vector, or unpolarized_scalar_jump (the paper's Fig. 7 left model).
         #[arg(long, value_delimiter = ',', default_value = "vector")]
         fidelity: Vec<String>,
-        /// White light with K wavelengths uniform over 380-780 nm (a colour picture).
+        /// White light with K wavelengths uniform over 380-780 nm (a colour picture), K ≥ 2.
         #[arg(long, conflicts_with = "wavelengths_nm")]
         samples: Option<usize>,
         /// White light at these wavelengths (nm, comma-separated, increasing).
         #[arg(long, value_delimiter = ',')]
         wavelengths_nm: Option<Vec<f64>>,
-        /// Illuminant of white light.
+        /// Illuminant of white light: d65 (CIE daylight) or e (equal energy).
         #[arg(long, value_enum, default_value = "d65")]
         illuminant: IlluminantArg,
-        /// Picture size WxH (default: the probe's pixels).
+        /// Picture size WxH in pixels (default: the probe's pixels).
         #[arg(long)]
         size: Option<String>,
-        /// Output PNG (default reports/render/<case>.png); several levels add _<level>.
-        #[arg(short = 'o', long)]
-        output: Option<PathBuf>,
-        /// The case library folder.
-        #[arg(long, default_value = "cases")]
-        cases_dir: PathBuf,
+        /// Output picture, a .png file (default reports/render/<case>.png); several levels
+        /// add _<level> before the extension.
+        #[arg(short = 'o', long, alias = "output")]
+        out: Option<PathBuf>,
+        /// The case library folder [default: as for `check`].
+        #[arg(long)]
+        cases_dir: Option<PathBuf>,
     },
     /// The paper's figures (Figs. 3, 5-8), Newton's colours and the colour error vs spectral
-    /// samples into OUT/figures/, then OUT/index.html.
+    /// samples into OUT/figures/, then OUT/index.html. Statistics go to stderr.
     Figures {
-        #[arg(long, default_value = "reports")]
+        /// Output folder (figures in OUT/figures/, the report OUT/index.html).
+        #[arg(short = 'o', long, default_value = "reports")]
         out: PathBuf,
         /// Picture size WxH of the figures (the paper's is 900x900).
         #[arg(long, default_value = "240x240")]
@@ -129,43 +162,26 @@ enum Command {
         /// White-light wavelength samples of Figs. 5-8.
         #[arg(long, default_value_t = 31)]
         samples: usize,
+        /// Illuminant of white light: d65 (CIE daylight) or e (equal energy).
         #[arg(long, value_enum, default_value = "d65")]
         illuminant: IlluminantArg,
     },
-    /// Run cases against their closed forms and golden files; exit 0 if all pass, 1 if a case
-    /// fails, 2 on bad input.
-    Check {
-        /// Case names from the library (cases/) or paths to case files; none: the whole library.
-        cases: Vec<String>,
-        /// Output folder for profile.csv files and summary.json.
-        #[arg(long, default_value = "reports")]
-        out: PathBuf,
-        #[arg(long, value_enum, default_value = "table")]
-        format: FormatArg,
-        /// Rewrite golden/<case>.csv from this run (the only way golden files change).
-        #[arg(long)]
-        bless: bool,
-        /// The case library folder.
-        #[arg(long, default_value = "cases")]
-        cases_dir: PathBuf,
-        /// The golden folder.
-        #[arg(long, default_value = "golden")]
-        golden_dir: PathBuf,
-    },
     /// The cost–accuracy trade: every fidelity level × bounce budget × spectral sample count
-    /// per case, against the case's reference; writes DIR/tradeoff/tradeoff.csv. Settings are
-    /// ranked by a deterministic cost count (path events, then the simpler level); a setting
-    /// that cannot be traced is a row with its reason.
+    /// per case, against the case's reference; writes OUT/tradeoff/tradeoff.csv and prints one
+    /// verdict line per case. Settings are ranked by a deterministic cost count (path events,
+    /// then the simpler level); a setting that cannot be traced is a row with its reason.
     Tradeoff {
         /// Case names or files (none: the whole library).
         cases: Vec<String>,
-        #[arg(long, default_value = "reports")]
+        /// Output folder (OUT/tradeoff/ and the report OUT/index.html).
+        #[arg(short = 'o', long, default_value = "reports")]
         out: PathBuf,
         /// Timed runs per setting (min, median and max reported; timings do not rank).
         #[arg(long, default_value_t = 3)]
         repeats: usize,
-        #[arg(long, default_value = "cases")]
-        cases_dir: PathBuf,
+        /// The case library folder [default: as for `check`].
+        #[arg(long)]
+        cases_dir: Option<PathBuf>,
     },
     /// Random valid scenes of every family with a closed form, each checked at `vector`
     /// against its primary reference; failures are shrunk into case files in --out. Exit 0
@@ -179,50 +195,56 @@ enum Command {
         /// Scenes per family.
         #[arg(long, default_value_t = 100)]
         count: usize,
+        /// Seed of the scene draws (the same seed draws the same scenes).
         #[arg(long, default_value_t = 1)]
         seed: u64,
         /// Skip scenes carrying any of these region tags (comma-separated), e.g. medium,rotated.
         #[arg(long, value_delimiter = ',')]
         skip: Vec<String>,
         /// Folder for the shrunk case file of each failure.
-        #[arg(long, default_value = "reports/fuzz")]
+        #[arg(short = 'o', long, default_value = "reports/fuzz")]
         out: PathBuf,
     },
     /// Renderer mode: forward ray fans into pixels, each estimator against the exact result,
-    /// over rays per pixel and pixel size; writes DIR/forward/forward.csv.
+    /// over rays per pixel and pixel size; writes OUT/forward/forward.csv and forward.png.
     Forward {
-        #[arg(long, default_value = "reports")]
+        /// Output folder (OUT/forward/ and the report OUT/index.html).
+        #[arg(short = 'o', long, default_value = "reports")]
         out: PathBuf,
+        /// Seed of the ray fans.
         #[arg(long, default_value_t = 1)]
         seed: u64,
-        /// Rays per source channel (comma-separated).
-        #[arg(long, value_delimiter = ',', default_values_t = [10_000usize, 40_000, 160_000])]
+        /// Rays per source channel, comma-separated (each 1 to 1e8).
+        #[arg(long, value_delimiter = ',', default_value = "10000,40000,160000")]
         rays: Vec<usize>,
-        /// Pixels per screen side (comma-separated).
-        #[arg(long, value_delimiter = ',', default_values_t = [4usize, 8, 16, 32])]
+        /// Pixels per screen side, comma-separated (each 1 to 4096).
+        #[arg(long, value_delimiter = ',', default_value = "4,8,16,32")]
         pixels: Vec<usize>,
     },
     /// The thin-layer models renderers ship (pbrt/Mitsuba thin dielectric, Belcour-Barla, ...)
-    /// against exact Airy over angle x thickness x wavelength; writes DIR/models/ and prints the
+    /// against exact Airy over angle x thickness x wavelength; writes OUT/models/ and prints the
     /// error table.
     Models {
-        #[arg(long, default_value = "reports")]
+        /// Output folder (OUT/models/).
+        #[arg(short = 'o', long, default_value = "reports")]
         out: PathBuf,
     },
     /// Conformance packs: per case, what another tracer needs to reproduce it (scene, probes,
-    /// wavelengths, observables, conventions, expected values, tolerances) in DIR/<case>/.
+    /// wavelengths, observables, conventions, expected values, tolerances) in OUT/<case>/.
     Export {
         /// Case names or files (none: the whole library).
         cases: Vec<String>,
-        #[arg(long)]
+        /// Output folder of the packs.
+        #[arg(short = 'o', long)]
         out: PathBuf,
-        #[arg(long, default_value = "cases")]
-        cases_dir: PathBuf,
+        /// The case library folder [default: as for `check`].
+        #[arg(long)]
+        cases_dir: Option<PathBuf>,
     },
     /// Grade another tracer's values at a case's probes: verdict rows as `check`, the closest
     /// fidelity rung; exit 0 pass, 1 fail, 2 bad input.
     Grade {
-        /// A case name (cases/) or a path to a case file.
+        /// A case name (the library) or a path to a case file.
         case: String,
         /// The value file (quantity,coordinate,value; see values_exact.csv of `fringe export`).
         #[arg(long)]
@@ -230,13 +252,79 @@ enum Command {
         /// The rung whose tolerance judges the values.
         #[arg(long, default_value = "vector")]
         level: String,
-        #[arg(long, default_value = "reports")]
+        /// Output folder of the grade report.
+        #[arg(short = 'o', long, default_value = "reports")]
         out: PathBuf,
-        #[arg(long, default_value = "cases")]
-        cases_dir: PathBuf,
+        /// The case library folder [default: as for `check`].
+        #[arg(long)]
+        cases_dir: Option<PathBuf>,
+        /// Format of the verdict table on stdout.
         #[arg(long, value_enum, default_value = "table")]
         format: FormatArg,
     },
+}
+
+/// The library folder: `--cases-dir`, else `<root>/cases` ([`check::library_root`]).
+fn cases_dir_or_default(dir: Option<PathBuf>) -> PathBuf {
+    dir.unwrap_or_else(|| check::library_root().join("cases"))
+}
+
+/// A progress bar over `len` steps on stderr, hidden when stderr is not a terminal.
+fn progress_bar(len: usize, what: &str) -> indicatif::ProgressBar {
+    use std::io::IsTerminal;
+    if !std::io::stderr().is_terminal() {
+        return indicatif::ProgressBar::hidden();
+    }
+    let bar = indicatif::ProgressBar::new(len as u64);
+    let template =
+        format!("{what} [{{bar:40}}] {{pos}}/{{len}} {{msg}}, {{elapsed}} elapsed, ~{{eta}} left");
+    if let Ok(style) = indicatif::ProgressStyle::with_template(&template) {
+        bar.set_style(style.progress_chars("=> "));
+    }
+    bar
+}
+
+/// `fringe list`: every library case with the first sentence of its description.
+fn list_command(cases_dir: &std::path::Path) -> ExitCode {
+    let names = check::library_names(cases_dir);
+    if names.is_empty() {
+        eprintln!(
+            "error: {}: no case library here (no *.json case files); set {} or --cases-dir",
+            cases_dir.display(),
+            check::ROOT_VARIABLE
+        );
+        return ExitCode::from(2);
+    }
+    let width = names.iter().map(|n| n.len()).max().unwrap_or(0);
+    for n in &names {
+        let file = cases_dir.join(format!("{n}.json"));
+        let description = std::fs::read_to_string(&file)
+            .ok()
+            .and_then(|t| serde_json::from_str::<serde_json::Value>(&t).ok())
+            .and_then(|v| v.get("description")?.as_str().map(one_line))
+            .unwrap_or_else(|| "(no description)".into());
+        outln!("{n:width$}  {description}");
+    }
+    eprintln!("{} case(s) in {}", names.len(), cases_dir.display());
+    ExitCode::SUCCESS
+}
+
+/// The first sentence of a description, on one line: up to the first ". " before a capital
+/// letter that does not end an abbreviation ("Fig. 3", "eq. 5").
+fn one_line(text: &str) -> String {
+    let flat = text.split_whitespace().collect::<Vec<_>>().join(" ");
+    let mut from = 0;
+    while let Some(k) = flat[from..].find(". ").map(|k| k + from) {
+        let word = flat[..k].rsplit(' ').next().unwrap_or("");
+        let abbreviation =
+            ["Fig", "Figs", "Eq", "eq", "eqs", "e.g", "i.e", "cf", "Ref"].contains(&word);
+        let capital = flat[k + 2..].starts_with(|c: char| c.is_uppercase());
+        if capital && !abbreviation {
+            return flat[..=k].to_string();
+        }
+        from = k + 2;
+    }
+    flat
 }
 
 fn main() -> ExitCode {
@@ -258,7 +346,7 @@ fn run_cli() -> ExitCode {
             cases,
             out,
             cases_dir,
-        } => match fringe::grade::export::export(&cases, &cases_dir, &out) {
+        } => match fringe::grade::export::export(&cases, &cases_dir_or_default(cases_dir), &out) {
             Ok(lines) => {
                 for l in lines {
                     outln!("{l}");
@@ -277,7 +365,15 @@ fn run_cli() -> ExitCode {
             out,
             cases_dir,
             format,
-        } => grade_command(case, values, &level, out, cases_dir, format),
+        } => grade_command(
+            case,
+            values,
+            &level,
+            out,
+            cases_dir_or_default(cases_dir),
+            format,
+        ),
+        Command::List { cases_dir } => list_command(&cases_dir_or_default(cases_dir)),
         Command::Models { out } => match fringe::renderer_models::study::write(&out) {
             Ok(table) => {
                 out!("{table}");
@@ -294,15 +390,8 @@ fn run_cli() -> ExitCode {
             repeats,
             cases_dir,
         } => {
-            let opts = CheckOptions {
-                cases,
-                cases_dir,
-                golden_dir: PathBuf::from("golden"),
-                out: out.clone(),
-                format: Format::Table,
-                bless: false,
-            };
-            let loaded = match check::resolve(&opts).and_then(|files| {
+            let cases_dir = cases_dir_or_default(cases_dir);
+            let loaded = match check::resolve_cases(&cases, &cases_dir).and_then(|files| {
                 files
                     .iter()
                     .map(|f| fringe::case::load::load(f).map_err(check::InputError::from))
@@ -316,12 +405,14 @@ fn run_cli() -> ExitCode {
             };
             let mut all = Vec::new();
             let mut summaries = String::new();
-            for (k, case) in loaded.iter().enumerate() {
+            let bar = progress_bar(loaded.len(), "tradeoff");
+            for case in &loaded {
                 let name = &case.spec.name;
-                eprintln!("tradeoff [{}/{}] {name}", k + 1, loaded.len());
+                bar.set_message(name.clone());
                 let rows = fringe::tradeoff::measure(case, repeats);
+                bar.inc(1);
                 let line = fringe::tradeoff::summary(name, &rows);
-                outln!("{line}");
+                bar.suspend(|| outln!("{line}"));
                 summaries.push_str(&line);
                 summaries.push('\n');
                 let path = out.join("tradeoff").join(format!("{name}_pareto.png"));
@@ -335,6 +426,7 @@ fn run_cli() -> ExitCode {
                 }
                 all.extend(rows);
             }
+            bar.finish_and_clear();
             let path = out.join("tradeoff").join("tradeoff.csv");
             if let Err(e) =
                 fringe::report::write_atomic(&path, fringe::tradeoff::csv(&all).as_bytes())
@@ -366,7 +458,7 @@ fn run_cli() -> ExitCode {
             wavelengths_nm,
             illuminant,
             size,
-            output,
+            out,
             cases_dir,
         } => match render_command(
             &case,
@@ -375,12 +467,13 @@ fn run_cli() -> ExitCode {
             wavelengths_nm,
             illuminant.get(),
             size.as_deref(),
-            output,
-            &cases_dir,
+            out,
+            &cases_dir_or_default(cases_dir),
         ) {
+            // What was written and how it was normalised: information, so stderr.
             Ok(lines) => {
                 for l in lines {
-                    outln!("{l}");
+                    eprintln!("{l}");
                 }
                 ExitCode::SUCCESS
             }
@@ -405,16 +498,16 @@ fn run_cli() -> ExitCode {
                 };
                 let m = fringe::figures::generate(&out, &opts)?;
                 for e in &m.fig8 {
-                    out!(
+                    eprint!(
                         "{}",
                         fringe::figures::fig8_text(&e.left, &e.right, &e.stats)
                     );
                 }
                 for (what, secs) in &m.timings {
-                    outln!("{what}: {secs:.2} s");
+                    eprintln!("{what}: {secs:.2} s");
                 }
                 fringe::report::html::write_index(&out)?;
-                outln!(
+                eprintln!(
                     "figures in {}, report {}",
                     out.join("figures").display(),
                     out.join("index.html").display()
@@ -451,9 +544,11 @@ fn run_cli() -> ExitCode {
                 eprintln!("error: --rays must be 1..=1e8 and --pixels 1..=4096");
                 return ExitCode::from(2);
             }
-            let rows = fringe::forward_study::run(seed, &rays, &pixels);
+            let bar = progress_bar(fringe::forward_study::steps(&rays, &pixels), "forward");
+            let rows = fringe::forward_study::run_observed(seed, &rays, &pixels, || bar.inc(1));
+            bar.finish_and_clear();
             let text = fringe::forward_study::csv(&rows);
-            out!("{text}");
+            let csv_path = out.join("forward").join("forward.csv");
             let path = out.join("forward").join("forward.csv");
             if let Err(e) = fringe::report::write_atomic(&path, text.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
@@ -467,6 +562,18 @@ fn run_cli() -> ExitCode {
                 eprintln!("error: {}: {e}", path.display());
                 return ExitCode::from(2);
             }
+            // The report page shows the study's plot and table.
+            if let Err(e) = fringe::report::html::write_index(&out) {
+                eprintln!("error: {e}");
+                return ExitCode::from(2);
+            }
+            eprintln!(
+                "forward: {} rows in {}, plot {}, report {}",
+                rows.len(),
+                csv_path.display(),
+                path.display(),
+                out.join("index.html").display()
+            );
             ExitCode::SUCCESS
         }
         Command::Check {
@@ -479,7 +586,7 @@ fn run_cli() -> ExitCode {
         } => {
             let opts = CheckOptions {
                 cases,
-                cases_dir,
+                cases_dir: cases_dir_or_default(cases_dir),
                 golden_dir,
                 out,
                 format: match format {
@@ -496,8 +603,7 @@ fn run_cli() -> ExitCode {
                 Ok(outcome) => {
                     if outcome.bless_refused {
                         eprintln!(
-                            "not blessed: golden files are written only for a passing run; {} unchanged",
-                            opts.golden_dir.display()
+                            "not blessed: golden files are written only for a passing run; none changed"
                         );
                     }
                     match opts.format {
@@ -613,6 +719,19 @@ fn render_command(
     output: Option<PathBuf>,
     cases_dir: &std::path::Path,
 ) -> Result<Vec<String>, String> {
+    // The picture is a PNG: any other extension is refused rather than mislabelled.
+    if let Some(o) = &output {
+        let png = o
+            .extension()
+            .and_then(|x| x.to_str())
+            .is_some_and(|x| x.eq_ignore_ascii_case("png"));
+        if !png {
+            return Err(format!(
+                "-o {}: the picture is written as PNG; allowed extension: .png",
+                o.display()
+            ));
+        }
+    }
     use fringe::colour::WavelengthGrid;
     let shadings = fidelity
         .iter()
@@ -660,7 +779,7 @@ fn render_command(
         (None, None) => None,
     };
     let cmd = fringe::render::Command {
-        case: fringe::render::resolve_case(case, cases_dir)?,
+        case: render_case(case, cases_dir)?,
         shadings,
         white,
         size: size.map(fringe::render::parse_size).transpose()?,
@@ -737,4 +856,33 @@ fn fuzz_command(
         );
         ExitCode::from(1)
     }
+}
+
+/// The case file `fringe render NAME` draws: a path as given; a name from the library
+/// `cases_dir`, else from the figure scenes `<root>/figures/`.
+fn render_case(name: &str, cases_dir: &std::path::Path) -> Result<PathBuf, String> {
+    let plain = !name.is_empty()
+        && name
+            .chars()
+            .all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_');
+    if !plain {
+        return fringe::render::resolve_case(name, cases_dir);
+    }
+    let figures = check::library_root().join("figures");
+    for dir in [cases_dir, figures.as_path()] {
+        let p = dir.join(format!("{name}.json"));
+        if p.is_file() {
+            return Ok(p);
+        }
+    }
+    let known: Vec<String> = check::library_names(cases_dir)
+        .into_iter()
+        .chain(check::library_names(&figures))
+        .collect();
+    Err(format!(
+        "{name}: no case of that name in {} or {}{}",
+        cases_dir.display(),
+        figures.display(),
+        check::did_you_mean(name, known.iter().map(String::as_str))
+    ))
 }

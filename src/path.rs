@@ -1495,27 +1495,27 @@ fn explore(
             found,
         );
     }
-    if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics {
-        if let Some(d_t) = fresnel::refract(d, normal, n1, n2) {
-            let child = found.child(
-                node,
-                Event {
-                    surface: j,
-                    kind: EventKind::Refract,
-                },
-            );
-            explore(
-                scene,
-                optics,
-                x,
-                d_t,
-                n2,
-                Some(j),
-                internal,
-                (child, depth + 1),
-                limits,
-                found,
-            );
-        }
+    if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics
+        && let Some(d_t) = fresnel::refract(d, normal, n1, n2)
+    {
+        let child = found.child(
+            node,
+            Event {
+                surface: j,
+                kind: EventKind::Refract,
+            },
+        );
+        explore(
+            scene,
+            optics,
+            x,
+            d_t,
+            n2,
+            Some(j),
+            internal,
+            (child, depth + 1),
+            limits,
+            found,
+        );
     }
 }

@@ -196,6 +196,7 @@ impl Scene {
     /// bottom face is held as the top point and −thickness along the normal
     /// ([`Plane::offset`]), so no coordinate difference enters the thickness. Returns the
     /// indices of (top, bottom).
+    #[allow(clippy::too_many_arguments)]
     pub fn add_plate(
         &mut self,
         name: &str,

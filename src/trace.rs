@@ -84,10 +84,10 @@ pub fn plan(
             for src in &scene.sources {
                 let a = src.anchor();
                 let img = surf.plane.mirror_point(p);
-                if let Some(t) = surf.plane.intersect(a, (img - a).normalize()) {
-                    if t > 0.0 {
-                        targets.push(a + t * (img - a).normalize());
-                    }
+                if let Some(t) = surf.plane.intersect(a, (img - a).normalize())
+                    && t > 0.0
+                {
+                    targets.push(a + t * (img - a).normalize());
                 }
             }
         }

@@ -579,13 +579,13 @@ impl Validator {
     /// `a` (at `path`) must not be parallel to `b` (both valid directions, else no verdict).
     fn not_parallel(&mut self, path: &str, a: &Vec3, b: &Vec3, what: &str) {
         let (x, y) = (unit(a), unit(b));
-        if let (Some(x), Some(y)) = (x, y) {
-            if x.cross(y).length() < 1e-9 {
-                self.fail(
-                    path,
-                    format!("{what}: the two are parallel, {a:?} and {b:?}"),
-                );
-            }
+        if let (Some(x), Some(y)) = (x, y)
+            && x.cross(y).length() < 1e-9
+        {
+            self.fail(
+                path,
+                format!("{what}: the two are parallel, {a:?} and {b:?}"),
+            );
         }
     }
 
@@ -801,13 +801,13 @@ impl Validator {
             Probe::Single { observe } => Some(("$.probe.single.observe", observe)),
             _ => None,
         };
-        if let Some((op, Observer::FarField { .. })) = observer {
-            if !has_plane_wave {
-                self.fail(
+        if let Some((op, Observer::FarField { .. })) = observer
+            && !has_plane_wave
+        {
+            self.fail(
                     &format!("{op}.far_field"),
                     "a far_field observer needs a plane-wave source (it looks along the reflected or refracted plane wave)",
                 );
-            }
         }
         if let Probe::Sweep { parameter, .. } = &c.probe {
             match parameter {
@@ -1542,7 +1542,8 @@ impl Validator {
         for surf in &s.surfaces {
             let name = surf.name();
             // (plane point, unit normal, bounded?, medium in front, medium behind) per face.
-            let mut faces: Vec<(DVec3, DVec3, bool, Option<&str>, Option<&str>)> = Vec::new();
+            type Face<'a> = (DVec3, DVec3, bool, Option<&'a str>, Option<&'a str>);
+            let mut faces: Vec<Face> = Vec::new();
             let mut slab = None;
             match surf {
                 SurfaceSpec::Interface {
@@ -1644,38 +1645,39 @@ impl Validator {
                 if bounded {
                     continue;
                 }
-                if let Some(a) = line_axis {
-                    if a.dot(n).abs() > 1e-9 {
-                        let kind = match &src.emitter {
-                            EmitterSpec::Line { .. } => "line",
-                            _ => "point",
-                        };
-                        self.fail(
+                if let Some(a) = line_axis
+                    && a.dot(n).abs() > 1e-9
+                {
+                    let kind = match &src.emitter {
+                        EmitterSpec::Line { .. } => "line",
+                        _ => "point",
+                    };
+                    self.fail(
                             &format!("{p}.emitter.{kind}.axis"),
                             format!("the line source crosses the unbounded surface {name:?}: its axis must be parallel to the surface"),
                         );
-                        return;
-                    }
+                    return;
                 }
                 let side = if d > 0.0 { front } else { back };
-                if let Some(m) = side {
-                    if m != s.ambient {
-                        self.fail(
+                if let Some(m) = side
+                    && m != s.ambient
+                {
+                    self.fail(
                             &format!("{p}.emitter"),
                             format!("the source is on the {m:?} side of surface {name:?}, but sources must be in the ambient medium {:?}", s.ambient),
                         );
-                        return;
-                    }
+                    return;
                 }
             }
-            if let Some(((t, n), (b, nb))) = slab {
-                if (anchor - t).dot(n) < 0.0 && (anchor - b).dot(nb) > 0.0 {
-                    self.fail(
+            if let Some(((t, n), (b, nb))) = slab
+                && (anchor - t).dot(n) < 0.0
+                && (anchor - b).dot(nb) > 0.0
+            {
+                self.fail(
                         &format!("{p}.emitter"),
                         format!("the source is inside {name:?} (between its faces); sources must be in the ambient medium {:?}", s.ambient),
                     );
-                    return;
-                }
+                return;
             }
         }
     }
@@ -1804,10 +1806,10 @@ impl Validator {
                         "v_axis must not be parallel to u_axis",
                     );
                 }
-                for k in 0..2 {
+                for (k, &size) in size_m.iter().enumerate() {
                     self.positive(
                         &format!("$.probe.grid.size_m[{k}]"),
-                        size_m[k],
+                        size,
                         2.0 * limits::MAX_LENGTH_M,
                         "a size (m)",
                     );

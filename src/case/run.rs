@@ -607,7 +607,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
                     ReferenceModel::CoherenceGaussian { .. } | ReferenceModel::CoherenceP9 { .. }
                 )
             {
-                let v = reference::value(&r.model, &built, &target, lambda, spec.trace.spreading)
+                let v = reference::value(&r.model, built, &target, lambda, spec.trace.spreading)
                     .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
                 let v = match reference::returns(&r.model) {
                     Some(Returns::AsProbe) => v * factor,

@@ -18,7 +18,7 @@ use crate::fidelity::Fidelity;
 use crate::report;
 use serde_json::json;
 use std::fmt::Write as _;
-use std::path::{Path, PathBuf};
+use std::path::Path;
 
 /// The conventions another tracer must follow (docs/PHYSICS.md §1), as written into every pack.
 pub fn conventions() -> serde_json::Value {
@@ -184,7 +184,7 @@ pub fn export(cases: &[String], cases_dir: &Path, out: &Path) -> Result<Vec<Stri
     let opts = CheckOptions {
         cases: cases.to_vec(),
         cases_dir: cases_dir.to_path_buf(),
-        golden_dir: PathBuf::from("golden"),
+        golden_dir: None,
         out: out.to_path_buf(),
         format: Format::Table,
         bless: false,

@@ -161,7 +161,7 @@ pub fn run_case(case: &str, cases_dir: &Path) -> Result<(load::Case, CaseResult)
     let opts = CheckOptions {
         cases: vec![case.to_string()],
         cases_dir: cases_dir.to_path_buf(),
-        golden_dir: PathBuf::from("golden"),
+        golden_dir: None,
         out: PathBuf::from("reports"),
         format: Format::Table,
         bless: false,

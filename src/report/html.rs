@@ -163,6 +163,7 @@ th{background:#eee} td.num{text-align:right;font-family:'DejaVu Sans Mono',monos
 td.pass{background:#c8efc8;color:#145214;font-weight:bold}
 td.fail{background:#f6c3c3;color:#7a0d0d;font-weight:bold}
 td.info{background:#eee;color:#555}
+td.near{background:#fbeec0;color:#6b4d00;font-weight:bold}
 section.case{border:1px solid #ddd;border-radius:6px;padding:8px 16px;margin:18px 0}
 p.formula{font-family:'DejaVu Sans Mono',monospace;background:#f6f6f6;padding:6px;font-size:13px}
 img.plot{max-width:100%;border:1px solid #ddd;margin:6px 0;display:block}
@@ -257,7 +258,8 @@ pub fn index_html(out: &Path) -> Result<String, String> {
     // One line per case, then every verdict row.
     h.push_str(
         "<h2>Summary</h2>\n<table><tr><th>case</th><th>verdict</th><th>checks passed</th>\
-         <th>auto</th><th>trace seconds</th></tr>\n",
+         <th>worst margin <small>(|dev| / tolerance)</small></th><th>auto</th>\
+         <th>trace seconds</th></tr>\n",
     );
     for c in &cases {
         let rows = c
@@ -270,10 +272,20 @@ pub fn index_html(out: &Path) -> Result<String, String> {
             .filter_map(|r| r.get("pass").and_then(|p| p.as_bool()))
             .collect();
         let ok = judged.iter().all(|p| *p);
+        let margin = match worst_margin(&rows) {
+            Some((ratio, what)) => format!(
+                "<td class=\"num {}\" title=\"{}\">{} <small>{}</small></td>",
+                margin_class(ratio),
+                escape(&what),
+                margin_text(ratio),
+                escape(&what)
+            ),
+            None => "<td class=\"num\">–</td>".to_string(),
+        };
         let _ = writeln!(
             h,
             "<tr><td><a href=\"#case-{0}\">{0}</a></td><td class=\"{1}\">{2}</td>\
-             <td class=\"num\">{3} / {4}</td><td>{5}</td><td class=\"num\">{6:.3}</td></tr>",
+             <td class=\"num\">{3} / {4}</td>{margin}<td>{5}</td><td class=\"num\">{6:.3}</td></tr>",
             escape(&s(c, "case")),
             if ok { "pass" } else { "fail" },
             if ok { "pass" } else { "FAIL" },
@@ -342,6 +354,11 @@ pub fn index_html(out: &Path) -> Result<String, String> {
             &format!("{name} profile"),
             "plot",
         ));
+        if let Some(values) = c.get("point_values").and_then(|v| v.as_array())
+            && !values.is_empty()
+        {
+            point_values_table(&mut h, values);
+        }
         h.push_str(&embed(
             &dir.join("convergence.png"),
             &format!("{name} convergence"),
@@ -373,6 +390,96 @@ pub fn index_html(out: &Path) -> Result<String, String> {
     h.push_str(&super::tradeoff_plot::report_section(out).unwrap_or_default());
     h.push_str("</body></html>\n");
     Ok(h)
+}
+
+/// The judged row of a case closest to (or furthest beyond) its tolerance: (|dev| / tolerance,
+/// "fidelity metric"), over the comparisons with closed forms and golden files (not the
+/// detection floors). Rows with a zero tolerance count when their deviation is not zero
+/// (infinitely far beyond). `None` when no row is judged against a tolerance.
+pub fn worst_margin(rows: &[serde_json::Value]) -> Option<(f64, String)> {
+    rows.iter()
+        .filter(|r| r.get("pass").and_then(|p| p.as_bool()).is_some())
+        // Detection floors (the smallest error a check catches) are not margins of the result.
+        .filter(|r| {
+            r.get("metric")
+                .and_then(|m| m.as_str())
+                .is_some_and(|m| !m.starts_with("detect_"))
+        })
+        .filter_map(|r| {
+            let tol = r.get("tolerance")?.as_f64()?;
+            // A non-finite deviation is serialized as null: the worst margin there is.
+            let dev = r
+                .get("max_abs_dev")
+                .and_then(|d| d.as_f64())
+                .unwrap_or(f64::NAN);
+            let ratio = if dev == 0.0 { 0.0 } else { dev / tol };
+            let what = format!(
+                "{} {}",
+                r.get("fidelity")?.as_str()?,
+                r.get("metric")?.as_str()?
+            );
+            Some((if ratio.is_nan() { f64::INFINITY } else { ratio }, what))
+        })
+        .max_by(|a, b| a.0.total_cmp(&b.0))
+}
+
+/// CSS class of a margin: within a tenth of the tolerance, within it, beyond it.
+fn margin_class(ratio: f64) -> &'static str {
+    if ratio <= 0.1 {
+        "pass"
+    } else if ratio <= 1.0 {
+        "near"
+    } else {
+        "fail"
+    }
+}
+
+/// A margin as a short number ("0.031", "2.4e-7", "∞").
+fn margin_text(ratio: f64) -> String {
+    if ratio.is_infinite() {
+        "∞".into()
+    } else if ratio == 0.0 {
+        "0".into()
+    } else if ratio >= 0.01 {
+        format!("{ratio:.3}")
+    } else {
+        format!("{ratio:.1e}")
+    }
+}
+
+/// The single-valued metrics of a case (a retardance, a fringe spacing): closed form and
+/// every level's traced value.
+fn point_values_table(h: &mut String, values: &[serde_json::Value]) {
+    h.push_str(
+        "<table class=\"values\"><tr><th>metric</th><th>quantity</th><th>closed form</th>\
+         <th>traced (per level)</th></tr>\n",
+    );
+    for v in values {
+        let text = |k: &str| v.get(k).and_then(|x| x.as_str()).unwrap_or("");
+        let traced: Vec<String> = v
+            .get("traced")
+            .and_then(|t| t.as_array())
+            .into_iter()
+            .flatten()
+            .filter_map(|pair| {
+                let level = pair.get(0)?.as_str()?;
+                let x = pair.get(1)?.as_f64()?;
+                Some(format!("{}: {x:.10}", escape(level)))
+            })
+            .collect();
+        let _ = writeln!(
+            h,
+            "<tr><td>{}</td><td>{}</td><td class=\"num\">{}</td><td>{}</td></tr>",
+            escape(text("metric")),
+            escape(text("quantity")),
+            v.get("closed_form")
+                .and_then(|x| x.as_f64())
+                .map(|x| format!("{x:.10}"))
+                .unwrap_or_else(|| "–".into()),
+            traced.join("; ")
+        );
+    }
+    h.push_str("</table>\n");
 }
 
 /// One line of `stability.csv` as the page reads it back (numbers as written).

@@ -249,64 +249,100 @@ pub fn rows(r: &CaseResult) -> Vec<Row> {
     out
 }
 
+/// Rows of text fields as CSV text with a header line, written by the `csv` crate (which quotes
+/// a field holding a comma, a quote or a line break; the numbers are formatted by the caller so
+/// that golden files keep their 17 significant digits).
+pub fn csv_text(header: &[&str], rows: impl IntoIterator<Item = Vec<String>>) -> String {
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    // Writing into memory cannot fail; a record of the wrong length is a programming error
+    // caught by the tests that read these files back.
+    let mut put = |fields: &[String]| {
+        w.write_record(fields)
+            .expect("CSV into memory: records of one length");
+    };
+    put(&header.iter().map(|h| h.to_string()).collect::<Vec<_>>());
+    for r in rows {
+        put(&r);
+    }
+    let bytes = w.into_inner().expect("CSV into memory");
+    String::from_utf8(bytes).expect("CSV of UTF-8 fields")
+}
+
 /// `profile.csv`: per reference, coordinate, analytic, then traced and deviation per level.
 pub fn profile_csv(r: &CaseResult) -> String {
-    let mut s = String::new();
     let levels = &r.levels;
-    let _ = write!(s, "reference,quantity,coordinate,analytic");
+    let mut header: Vec<String> = ["reference", "quantity", "coordinate", "analytic"]
+        .map(String::from)
+        .to_vec();
     for l in levels {
-        let _ = write!(s, ",traced_{l},deviation_{l}");
+        header.push(format!("traced_{l}"));
+        header.push(format!("deviation_{l}"));
     }
-    s.push('\n');
+    let mut rows = Vec::new();
     for m in &r.metrics {
         let devs: Vec<Option<Vec<f64>>> = levels.iter().map(|l| m.deviations(*l)).collect();
         for i in 0..m.coordinates.len() {
-            let _ = write!(
-                s,
-                "{},{},{:.17e},{:.17e}",
-                m.name,
-                m.quantity(r.observable), // labels hold no comma
-                m.coordinates[i],
-                m.analytic[i]
-            );
+            let mut row = vec![
+                m.name.clone(),
+                m.quantity(r.observable).to_string(),
+                format!("{:.17e}", m.coordinates[i]),
+                format!("{:.17e}", m.analytic[i]),
+            ];
             for (k, l) in levels.iter().enumerate() {
                 match (m.traced.get(l), &devs[k]) {
                     (Some(t), Some(d)) => {
-                        let _ = write!(s, ",{:.17e},{:.6e}", t[i], d[i]);
+                        row.push(format!("{:.17e}", t[i]));
+                        row.push(format!("{:.6e}", d[i]));
                     }
-                    _ => s.push_str(",,"),
+                    _ => row.extend([String::new(), String::new()]),
                 }
             }
-            s.push('\n');
+            rows.push(row);
         }
     }
-    s
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    csv_text(&header, rows)
 }
 
 /// `convergence.csv` of Airy cases.
 pub fn convergence_csv(r: &CaseResult) -> String {
-    let mut s = String::from("orders,internal_reflections,max_abs_dev,tail_bound\n");
-    for c in &r.convergence {
-        let _ = writeln!(
-            s,
-            "{},{},{:.6e},{:.6e}",
-            c.orders, c.internal_reflections, c.max_abs_dev, c.bound
-        );
-    }
-    s
+    csv_text(
+        &[
+            "orders",
+            "internal_reflections",
+            "max_abs_dev",
+            "tail_bound",
+        ],
+        r.convergence.iter().map(|c| {
+            vec![
+                c.orders.to_string(),
+                c.internal_reflections.to_string(),
+                format!("{:.6e}", c.max_abs_dev),
+                format!("{:.6e}", c.bound),
+            ]
+        }),
+    )
 }
+
+/// The header of a golden file.
+const GOLDEN_HEADER: [&str; 4] = ["reference", "fidelity", "coordinate", "traced"];
 
 /// The golden file: every traced value of every reference and level.
 pub fn golden_csv(r: &CaseResult) -> String {
-    let mut s = String::from("reference,fidelity,coordinate,traced\n");
+    let mut rows = Vec::new();
     for m in &r.metrics {
         for (l, t) in &m.traced {
             for (x, v) in m.coordinates.iter().zip(t) {
-                let _ = writeln!(s, "{},{},{:.17e},{:.17e}", m.name, l, x, v);
+                rows.push(vec![
+                    m.name.clone(),
+                    l.to_string(),
+                    format!("{x:.17e}"),
+                    format!("{v:.17e}"),
+                ]);
             }
         }
     }
-    s
+    csv_text(&GOLDEN_HEADER, rows)
 }
 
 /// Compare a result with its golden text. `Err(Corrupt)` if the file does not parse,
@@ -319,28 +355,29 @@ pub enum GoldenError {
 }
 
 pub fn compare_golden(r: &CaseResult, golden: &str, tolerance: f64) -> Result<f64, GoldenError> {
-    let mut lines = golden.lines();
-    if lines.next() != Some("reference,fidelity,coordinate,traced") {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(golden.as_bytes());
+    let mut records = reader.records();
+    let header_ok = matches!(records.next(), Some(Ok(h)) if h.iter().eq(GOLDEN_HEADER));
+    if !header_ok {
         return Err(GoldenError::Corrupt(
             "line 1: expected the header `reference,fidelity,coordinate,traced`".into(),
         ));
     }
     let mut expected = Vec::new();
-    for (k, line) in lines.enumerate() {
-        let f: Vec<&str> = line.split(',').collect();
+    for (k, record) in records.enumerate() {
+        let bad = |got: String| {
+            GoldenError::Corrupt(format!(
+                "line {}: expected `reference,fidelity,coordinate,traced` with finite numbers, got {got}",
+                k + 2
+            ))
+        };
+        let f = record.map_err(|e| bad(e.to_string()))?;
         let parse = |x: &str| x.parse::<f64>().ok().filter(|v| v.is_finite());
-        match (
-            f.len(),
-            f.get(2).and_then(|x| parse(x)),
-            f.get(3).and_then(|x| parse(x)),
-        ) {
+        match (f.len(), f.get(2).and_then(parse), f.get(3).and_then(parse)) {
             (4, Some(x), Some(v)) => expected.push((f[0].to_string(), f[1].to_string(), x, v)),
-            _ => {
-                return Err(GoldenError::Corrupt(format!(
-                    "line {}: expected `reference,fidelity,coordinate,traced` with finite numbers, got {line:?}",
-                    k + 2
-                )));
-            }
+            _ => return Err(bad(format!("{:?}", f.iter().collect::<Vec<_>>()))),
         }
     }
     let mut actual = Vec::new();
@@ -491,6 +528,40 @@ pub struct CaseSummary<'a> {
     /// `trace_seconds`.
     pub work_units: f64,
     pub rows: Vec<Row>,
+    /// The metrics with one value (a retardance, a fringe spacing, a visibility): the page
+    /// shows their numbers, as they have no profile to plot.
+    pub point_values: Vec<PointValue>,
+}
+
+/// A single-valued metric of a case: its closed form and what every level traced.
+#[derive(Serialize)]
+pub struct PointValue {
+    /// The reference's name in the case file.
+    pub metric: String,
+    /// What is measured, with its unit (e.g. "retardance arg E_p − arg E_s (rad)").
+    pub quantity: &'static str,
+    /// The closed-form value.
+    pub closed_form: f64,
+    /// The traced value per fidelity level (levels where the metric is undefined are absent).
+    pub traced: Vec<(String, f64)>,
+}
+
+/// The [`PointValue`]s of a case result: every metric evaluated at a single coordinate.
+pub fn point_values(r: &CaseResult) -> Vec<PointValue> {
+    r.metrics
+        .iter()
+        .filter(|m| m.analytic.len() == 1)
+        .map(|m| PointValue {
+            metric: m.name.clone(),
+            quantity: m.quantity(r.observable),
+            closed_form: m.analytic[0],
+            traced: m
+                .traced
+                .iter()
+                .filter_map(|(l, v)| Some((l.name().to_string(), *v.first()?)))
+                .collect(),
+        })
+        .collect()
 }
 
 /// Print rows as an aligned table.

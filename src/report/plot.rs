@@ -36,6 +36,52 @@ pub const DEVIATION_PANEL: u32 = 220;
 /// Size of `convergence.png`.
 pub const CONVERGENCE_SIZE: (u32, u32) = (800, 480);
 
+/// Width of the legend column at the right of a profile plot (pixels).
+const LEGEND_WIDTH: u32 = 150;
+
+/// Tick labels for a linear axis over [y0, y1]: fixed decimals enough to tell the ticks of a
+/// nearly flat curve apart, or scientific notation for values far from 1 or with more than six
+/// decimals (so a label never outgrows the label area).
+fn tick_formatter(y0: f64, y1: f64) -> impl Fn(f64) -> String {
+    let span = (y1 - y0).abs().max(f64::MIN_POSITIVE);
+    let magnitude = y0.abs().max(y1.abs());
+    let decimals = (-span.log10()).ceil().max(0.0) as usize + 1;
+    let scientific = magnitude < 1e-3 || magnitude >= 1e5 || decimals > 6;
+    // Significant digits that still separate ticks a tenth of the span apart.
+    let digits = ((magnitude / span).log10().ceil().max(0.0) as usize + 1).min(10);
+    move |v: f64| {
+        if v == 0.0 {
+            "0".to_string()
+        } else if scientific {
+            format!("{v:.digits$e}")
+        } else {
+            format!("{v:.decimals$}")
+        }
+    }
+}
+
+/// Draws a legend (label, colour, line width) as a column in `area`, beside the plot.
+fn legend_column(
+    area: &DrawingArea<BitMapBackend<'_>, Shift>,
+    entries: &[(String, RGBColor, u32)],
+) -> Result<(), String> {
+    for (k, (label, colour, width)) in entries.iter().enumerate() {
+        let y = 40 + 20 * k as i32;
+        area.draw(&PathElement::new(
+            vec![(6, y), (30, y)],
+            colour.stroke_width(*width),
+        ))
+        .map_err(err)?;
+        area.draw(&Text::new(
+            label.clone(),
+            (36, y - 7),
+            ("sans-serif", 13).into_font().color(&BLACK),
+        ))
+        .map_err(err)?;
+    }
+    Ok(())
+}
+
 /// Floor of the log deviation axis: exact zeros are drawn here.
 const DEV_FLOOR: f64 = 1e-17;
 
@@ -152,6 +198,9 @@ pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, Str
         for (panel, &mi) in panels.iter().zip(&metrics) {
             let m = &r.metrics[mi];
             let (top, bottom) = panel.split_vertically(VALUE_PANEL);
+            // The legend has a column of its own at the right: it never covers a curve.
+            let (top, legend_area) = top.split_horizontally(WIDTH - LEGEND_WIDTH);
+            let (bottom, _) = bottom.split_horizontally(WIDTH - LEGEND_WIDTH);
             let (x0, x1) = finite_range(m.coordinates.iter().copied());
             let (y0, y1) = finite_range(
                 m.analytic
@@ -159,8 +208,22 @@ pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, Str
                     .chain(m.traced.values().flatten())
                     .copied(),
             );
-            // Headroom for the legend above the curves.
-            let y1 = y1 + 0.45 * (y1 - y0);
+            // Values far from 1 (p light at Brewster's angle reflects ~1e-19) are drawn in
+            // units of a power of ten named on the axis: plotters finds no ticks on such
+            // ranges, and the labels stay short.
+            let magnitude = y0.abs().max(y1.abs());
+            let exponent = if magnitude > 0.0 && !(1e-3..1e5).contains(&magnitude) {
+                magnitude.log10().floor() as i32
+            } else {
+                0
+            };
+            let scale = 10f64.powi(exponent);
+            let (y0, y1) = (y0 / scale, y1 / scale);
+            let y_desc = if exponent == 0 {
+                m.quantity(r.observable).to_string()
+            } else {
+                format!("{} × 1e{exponent}", m.quantity(r.observable))
+            };
             let mut chart = ChartBuilder::on(&top)
                 .caption(
                     format!("{} ({:?})", m.name, m.kind).to_lowercase(),
@@ -168,15 +231,14 @@ pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, Str
                 )
                 .margin(8)
                 .x_label_area_size(30)
-                .y_label_area_size(80)
+                .y_label_area_size(100)
                 .build_cartesian_2d(x0..x1, y0..y1)
                 .map_err(err)?;
-            // Enough decimals to tell the tick labels of a nearly flat curve apart.
-            let decimals = (-(y1 - y0).log10()).ceil().clamp(0.0, 12.0) as usize + 1;
+            let tick = tick_formatter(y0, y1);
             chart
                 .configure_mesh()
-                .y_desc(m.quantity(r.observable))
-                .y_label_formatter(&|v| format!("{v:.decimals$}"))
+                .y_desc(y_desc)
+                .y_label_formatter(&|v| tick(*v))
                 .label_style(("sans-serif", 13))
                 .light_line_style(WHITE.mix(0.0))
                 .draw()
@@ -186,36 +248,23 @@ pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, Str
                     .iter()
                     .zip(v)
                     .filter(|(x, y)| x.is_finite() && y.is_finite())
-                    .map(|(x, y)| (*x, *y))
+                    .map(|(x, y)| (*x, *y / scale))
                     .collect()
             };
             let grey = RGBColor(190, 190, 190);
             chart
                 .draw_series(LineSeries::new(pts(&m.analytic), grey.stroke_width(8)))
-                .map_err(err)?
-                .label("closed form")
-                .legend(move |(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], grey.stroke_width(8))
-                });
+                .map_err(err)?;
+            let mut legend = vec![("closed form".to_string(), grey, 8)];
             for (level, values) in &m.traced {
                 let c = level_colour(*level);
                 let w = level_width(*level);
                 chart
                     .draw_series(LineSeries::new(pts(values), c.stroke_width(w)))
-                    .map_err(err)?
-                    .label(level.name())
-                    .legend(move |(x, y)| {
-                        PathElement::new(vec![(x, y), (x + 20, y)], c.stroke_width(w.max(2)))
-                    });
+                    .map_err(err)?;
+                legend.push((level.name().to_string(), c, w.max(2)));
             }
-            chart
-                .configure_series_labels()
-                .position(SeriesLabelPosition::UpperRight)
-                .background_style(WHITE.mix(0.85))
-                .border_style(BLACK)
-                .label_font(("sans-serif", 13))
-                .draw()
-                .map_err(err)?;
+            legend_column(&legend_area, &legend)?;
 
             // Deviation panel (log scale).
             let devs: Vec<(Fidelity, Vec<f64>)> = m

@@ -21,10 +21,15 @@ pub fn models_section(h: &mut String, out: &Path) {
          colour. <code>cost:</code> rows isolate one simplification each. Made by \
          <code>fringe models</code>; every grid point is in <code>models/models.csv</code>.</p>\n<table>",
     );
-    for (i, line) in text.lines().enumerate() {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .from_reader(text.as_bytes());
+    for (i, record) in reader.records().enumerate() {
+        let Ok(record) = record else { break };
         let cell = if i == 0 { "th" } else { "td" };
         h.push_str("<tr>");
-        for f in line.split(',') {
+        for f in record.iter() {
             let _ = write!(h, "<{cell}>{}</{cell}>", escape(f));
         }
         h.push_str("</tr>\n");

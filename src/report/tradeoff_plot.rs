@@ -40,6 +40,8 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
         .iter()
         .filter_map(|r| r.measurement().map(|m| (r, m)))
         .collect();
+    // The legend sits lower left: a Pareto front runs from cheap and inaccurate (upper left)
+    // to costly and accurate (lower right), so that corner is usually empty.
     png((900, 560), |root| {
         let (x0, x1) = log_range(traced.iter().map(|(r, m)| x_of(r, m)));
         let (y0, y1) = log_range(
@@ -48,6 +50,8 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
                 .map(|(_, m)| m.max_abs_dev.max(FLOOR))
                 .chain(rows.iter().map(|r| r.tolerance)),
         );
+        // Headroom: markers at the largest error are not cut by the frame.
+        let y1 = y1 * 4.0;
         let mut chart = ChartBuilder::on(root)
             .caption(
                 format!("{case}: cost vs error of every setting"),
@@ -110,7 +114,7 @@ pub fn pareto_png(case: &str, rows: &[TradeoffRow]) -> Result<Vec<u8>, String> {
         }
         chart
             .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
+            .position(SeriesLabelPosition::LowerLeft)
             .background_style(WHITE.mix(0.85))
             .border_style(BLACK)
             .label_font(("sans-serif", 13))

@@ -444,3 +444,300 @@ fn every_bad_case_is_rejected_clearly() {
         failures.join("\n")
     );
 }
+
+// ---------------------------------------------------------------------------------------------
+// One consistent command line (issue 16, items 3 and 4)
+// ---------------------------------------------------------------------------------------------
+
+/// Every subcommand of `fringe --help`, in order.
+fn subcommands() -> Vec<String> {
+    let o = fringe().arg("--help").output().unwrap();
+    let help = String::from_utf8(o.stdout).unwrap();
+    help.lines()
+        .skip_while(|l| !l.starts_with("Commands:"))
+        .skip(1)
+        .take_while(|l| l.starts_with("  "))
+        .filter_map(|l| l.split_whitespace().next().map(String::from))
+        .filter(|c| c != "help")
+        .collect()
+}
+
+#[test]
+fn check_is_listed_first_and_every_flag_has_help() {
+    let commands = subcommands();
+    assert_eq!(commands.first().map(String::as_str), Some("check"));
+    assert!(commands.iter().any(|c| c == "list"), "{commands:?}");
+    for c in &commands {
+        let o = fringe().args([c, "--help"]).output().unwrap();
+        let help = String::from_utf8(o.stdout).unwrap();
+        let lines: Vec<&str> = help
+            .lines()
+            .skip_while(|l| !l.starts_with("Options:"))
+            .skip(1)
+            .collect();
+        for (k, line) in lines.iter().enumerate() {
+            let text = line.trim_start();
+            if !text.starts_with('-') {
+                continue;
+            }
+            // "  -o, --out <OUT>  Output folder ... [default: reports]", or the flag alone with
+            // its help on the next, further indented line: a description that is more than
+            // the default.
+            let same_line = text.split_once("  ").map(|(_, rest)| rest.trim());
+            let next_line = lines
+                .get(k + 1)
+                .map(|l| l.trim())
+                .filter(|l| !l.starts_with('-'));
+            let described = same_line
+                .or(next_line)
+                .is_some_and(|rest| !rest.is_empty() && !rest.starts_with('['));
+            assert!(described, "`fringe {c}`: a flag without help: {line:?}");
+        }
+    }
+}
+
+#[test]
+fn every_command_that_writes_takes_dash_o_out() {
+    for c in [
+        "check", "render", "figures", "tradeoff", "fuzz", "forward", "models", "export", "grade",
+    ] {
+        let o = fringe().args([c, "--help"]).output().unwrap();
+        let help = String::from_utf8(o.stdout).unwrap();
+        assert!(
+            help.contains("-o, --out <OUT>"),
+            "`fringe {c} --help`:\n{help}"
+        );
+        assert!(
+            !help.contains("--output"),
+            "`fringe {c}`: --output is a hidden alias"
+        );
+    }
+    // render's former `--output` still works.
+    let dir = tempfile::tempdir().unwrap();
+    let png = dir.path().join("y.png");
+    fringe()
+        .current_dir(dir.path())
+        .args(["render", "young_fig3", "--size", "4x4", "--output"])
+        .arg(&png)
+        .assert()
+        .code(0);
+    assert!(png.is_file());
+}
+
+#[test]
+fn the_forward_rays_help_shows_defaults_as_it_parses_them() {
+    let o = fringe().args(["forward", "--help"]).output().unwrap();
+    let help = String::from_utf8(o.stdout).unwrap();
+    let rays = help.lines().find(|l| l.contains("--rays")).unwrap();
+    assert!(rays.contains("comma-separated"), "{rays}");
+    let default = rays
+        .split("[default: ")
+        .nth(1)
+        .and_then(|d| d.strip_suffix(']'))
+        .unwrap_or_else(|| panic!("no default shown: {rays}"));
+    assert!(
+        !default.contains(' ') && default.contains(','),
+        "the default is not written the way --rays parses: {default:?}"
+    );
+    // And the shown default parses (on a tiny screen, so it is quick).
+    let dir = tempfile::tempdir().unwrap();
+    fringe()
+        .args(["forward", "--rays", default, "--pixels", "2", "-o"])
+        .arg(dir.path())
+        .assert()
+        .code(0);
+}
+
+#[test]
+fn results_go_to_stdout_and_diagnostics_to_stderr() {
+    let dir = tempfile::tempdir().unwrap();
+    // render: the picture is the result; what it wrote and its normalisation are diagnostics.
+    let o = fringe()
+        .args(["render", "young_fig3", "--size", "4x4", "-o"])
+        .arg(dir.path().join("y.png"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert!(o.stdout.is_empty(), "render printed to stdout");
+    assert!(String::from_utf8_lossy(&o.stderr).contains("y.png"));
+    // forward: the study is a file (-o), not a dump on stdout.
+    let out = dir.path().join("fw");
+    let o = fringe()
+        .args(["forward", "--rays", "100", "--pixels", "2", "-o"])
+        .arg(&out)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert!(o.stdout.is_empty(), "forward printed to stdout");
+    let csv = std::fs::read_to_string(out.join("forward/forward.csv")).unwrap();
+    // Three scenes × one pixel count × one ray count × four estimators.
+    assert_eq!(csv.lines().count(), 1 + 12, "{csv}");
+    // list: the result (the library) on stdout, one line per case with its description.
+    let o = fringe().arg("list").output().unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    let text = String::from_utf8(o.stdout).unwrap();
+    let library: Vec<String> = std::fs::read_dir(root().join("cases"))
+        .unwrap()
+        .filter_map(|e| {
+            let p = e.unwrap().path();
+            (p.extension()? == "json" && p.file_stem()? != "schema")
+                .then(|| p.file_stem().unwrap().to_string_lossy().into_owned())
+        })
+        .collect();
+    assert_eq!(text.lines().count(), library.len(), "{text}");
+    for name in &library {
+        let line = text
+            .lines()
+            .find(|l| l.split_whitespace().next() == Some(name.as_str()))
+            .unwrap_or_else(|| panic!("{name} not listed:\n{text}"));
+        assert!(line.len() > name.len() + 10, "no description: {line:?}");
+    }
+    let young = text.lines().find(|l| l.starts_with("young_paper")).unwrap();
+    assert!(
+        young.contains("Fig. 3"),
+        "cut at an abbreviation: {young:?}"
+    );
+}
+
+#[test]
+fn an_unknown_case_name_suggests_the_closest() {
+    for command in ["check", "render"] {
+        fringe()
+            .args([command, "young_papr"])
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains("did you mean `young_paper`?"))
+            .stderr(no_panic());
+    }
+    // Nothing close: no suggestion.
+    fringe()
+        .args(["check", "zzzzzzzz"])
+        .assert()
+        .code(2)
+        .stderr(predicate::str::contains("did you mean").not());
+}
+
+#[test]
+fn render_refuses_bad_samples_and_non_png_outputs_as_user_errors() {
+    let dir = tempfile::tempdir().unwrap();
+    for samples in ["0", "1"] {
+        fringe()
+            .args([
+                "render",
+                "young_fig3",
+                "--size",
+                "4x4",
+                "--samples",
+                samples,
+                "-o",
+            ])
+            .arg(dir.path().join("a.png"))
+            .assert()
+            .code(2)
+            .stderr(predicate::str::starts_with(format!(
+                "error: --samples {samples}: "
+            )))
+            .stderr(predicate::str::contains("::").not())
+            .stderr(no_panic());
+    }
+    for name in ["x.jpg", "x.JPEG", "x"] {
+        let target = dir.path().join(name);
+        fringe()
+            .args(["render", "young_fig3", "--size", "4x4", "-o"])
+            .arg(&target)
+            .assert()
+            .code(2)
+            .stderr(predicate::str::contains("allowed extension: .png"));
+        assert!(!target.exists(), "{name} was written");
+    }
+    assert!(absent_or_empty(dir.path()));
+}
+
+/// A copy of the built binary outside the checkout, as an installed `fringe` would be.
+#[test]
+fn library_commands_work_from_any_directory() {
+    let cwd = tempfile::tempdir().unwrap();
+    fringe()
+        .current_dir(cwd.path())
+        .arg("list")
+        .assert()
+        .code(0)
+        .stdout(predicate::str::contains("young_paper"));
+    fringe()
+        .current_dir(cwd.path())
+        .args(["check", "young_paper", "-o", "out"])
+        .assert()
+        .code(0)
+        .stdout(predicate::str::contains("golden"));
+    assert!(cwd.path().join("out/young_paper/profile.csv").is_file());
+    fringe()
+        .current_dir(cwd.path())
+        .args(["render", "young_fig3", "--size", "4x4", "-o", "y.png"])
+        .assert()
+        .code(0);
+    assert!(cwd.path().join("y.png").is_file());
+    // FRINGE_ROOT names another library.
+    let lib = Lib::new(&["lloyd_mirror"]);
+    fringe()
+        .current_dir(cwd.path())
+        .env("FRINGE_ROOT", lib.path())
+        .arg("list")
+        .assert()
+        .code(0)
+        .stdout(predicate::str::starts_with("lloyd_mirror "))
+        .stdout(predicate::str::contains("young_paper").not());
+}
+
+#[test]
+fn a_case_file_outside_the_library_blesses_beside_itself() {
+    let repo_golden = snapshot(&root().join("golden"));
+    let cwd = tempfile::tempdir().unwrap();
+    std::fs::create_dir_all(cwd.path().join("mine")).unwrap();
+    std::fs::copy(
+        root().join("cases/young_paper.json"),
+        cwd.path().join("mine/young_paper.json"),
+    )
+    .unwrap();
+    let run = |args: &[&str]| {
+        fringe()
+            .current_dir(cwd.path())
+            .args(args)
+            .args(["-o", "out"])
+            .output()
+            .unwrap()
+    };
+    // No golden file yet: the case fails and prints the command that creates it.
+    let o = run(&["check", "mine/young_paper.json"]);
+    assert_eq!(o.status.code(), Some(1));
+    let stderr = String::from_utf8_lossy(&o.stderr).into_owned();
+    let hint = stderr
+        .split('`')
+        .find(|s| s.starts_with("fringe check") && s.ends_with("--bless"))
+        .unwrap_or_else(|| panic!("no bless command in: {stderr}"));
+    assert_eq!(hint, "fringe check mine/young_paper.json --bless");
+    // The printed command works, and writes the golden file beside the case file.
+    let args: Vec<&str> = hint.split_whitespace().skip(1).collect();
+    assert_eq!(run(&args).status.code(), Some(0));
+    let golden = cwd.path().join("mine/golden/young_paper.csv");
+    assert!(golden.is_file());
+    assert_eq!(
+        run(&["check", "mine/young_paper.json"]).status.code(),
+        Some(0)
+    );
+    // The blessed file is a baseline: a changed value fails against it.
+    let text = std::fs::read_to_string(&golden).unwrap();
+    let mut lines: Vec<String> = text.lines().map(String::from).collect();
+    let last = lines.last_mut().unwrap();
+    let (head, value) = last.rsplit_once(',').unwrap();
+    let v: f64 = value.parse().unwrap();
+    *last = format!("{head},{:e}", v * 1.01 + 1e-3);
+    std::fs::write(&golden, lines.join("\n") + "\n").unwrap();
+    assert_eq!(
+        run(&["check", "mine/young_paper.json"]).status.code(),
+        Some(1)
+    );
+    assert!(
+        snapshot(&root().join("golden")) == repo_golden,
+        "the repository's golden/ changed"
+    );
+}

@@ -190,7 +190,7 @@ impl Airy {
     }
     /// Orders kept with at most N internal reflections.
     fn counts(n: usize) -> (usize, usize) {
-        ((n + 1) / 2, n / 2)
+        (n.div_ceil(2), n / 2)
     }
     fn tail_bound(&self, n: usize) -> f64 {
         let (mr, mt) = Self::counts(n);
@@ -217,7 +217,7 @@ impl Airy {
     /// 1 − P_left for the incoherent sum (see module docs).
     fn incoherent_expected(&self, n: usize) -> f64 {
         let t12 = 1.0 - self.r12.norm_sqr();
-        let up = (n + 1) / 2; // reflections at the top from inside among the first N+1
+        let up = n.div_ceil(2); // reflections at the top from inside among the first N+1
         let down = n + 1 - up; // at the bottom
         1.0 - t12 * self.r23.norm_sqr().powi(down as i32) * self.r21.norm_sqr().powi(up as i32)
     }

@@ -181,7 +181,7 @@ fn small_report() -> (tempfile::TempDir, PathBuf, check::CheckOutcome) {
             "lloyd_mirror".into(),
         ],
         cases_dir: "cases".into(),
-        golden_dir: "golden".into(),
+        golden_dir: None,
         out: out.clone(),
         format: Format::Table,
         bless: false,

@@ -102,7 +102,7 @@ fn my_trace(p: &Plate, o: DVec3, d: DVec3, seq: &[Event]) -> Option<(Vec<DVec3>,
         let n_o = if d.dot(p.n) < 0.0 { p.n } else { -p.n };
         let ci = -d.dot(n_o);
         match e.kind {
-            EventKind::Reflect => d = d + 2.0 * ci * n_o,
+            EventKind::Reflect => d += 2.0 * ci * n_o,
             EventKind::Refract => {
                 // far side index: crossing the top from above → n_p, from below → n_a;
                 // crossing the bottom from above → n_b, from below → n_p.

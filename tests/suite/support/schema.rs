@@ -176,44 +176,44 @@ impl Schema {
                 return;
             }
         }
-        if let Some(e) = s.get("enum").and_then(|e| e.as_array()) {
-            if !e.contains(v) {
-                fail(format!("{v} is not one of {e:?}"));
-            }
+        if let Some(e) = s.get("enum").and_then(|e| e.as_array())
+            && !e.contains(v)
+        {
+            fail(format!("{v} is not one of {e:?}"));
         }
         if let Some(x) = v.as_f64() {
-            if let Some(lo) = s.get("minimum").and_then(|x| x.as_f64()) {
-                if x < lo {
-                    fail(format!("{x} < minimum {lo}"));
-                }
+            if let Some(lo) = s.get("minimum").and_then(|x| x.as_f64())
+                && x < lo
+            {
+                fail(format!("{x} < minimum {lo}"));
             }
-            if let Some(lo) = s.get("exclusiveMinimum").and_then(|x| x.as_f64()) {
-                if x <= lo {
-                    fail(format!("{x} ≤ exclusiveMinimum {lo}"));
-                }
+            if let Some(lo) = s.get("exclusiveMinimum").and_then(|x| x.as_f64())
+                && x <= lo
+            {
+                fail(format!("{x} ≤ exclusiveMinimum {lo}"));
             }
-            if let Some(hi) = s.get("maximum").and_then(|x| x.as_f64()) {
-                if x > hi {
-                    fail(format!("{x} > maximum {hi}"));
-                }
+            if let Some(hi) = s.get("maximum").and_then(|x| x.as_f64())
+                && x > hi
+            {
+                fail(format!("{x} > maximum {hi}"));
             }
         }
-        if let (Some(p), Some(text)) = (s.get("pattern").and_then(|p| p.as_str()), v.as_str()) {
-            if !Pattern::parse(p).expect("checked in new()").matches(text) {
-                fail(format!("{text:?} does not match {p}"));
-            }
+        if let (Some(p), Some(text)) = (s.get("pattern").and_then(|p| p.as_str()), v.as_str())
+            && !Pattern::parse(p).expect("checked in new()").matches(text)
+        {
+            fail(format!("{text:?} does not match {p}"));
         }
         if let Some(items) = v.as_array() {
             let n = items.len() as u64;
-            if let Some(m) = s.get("minItems").and_then(|x| x.as_u64()) {
-                if n < m {
-                    fail(format!("{n} items, at least {m} required"));
-                }
+            if let Some(m) = s.get("minItems").and_then(|x| x.as_u64())
+                && n < m
+            {
+                fail(format!("{n} items, at least {m} required"));
             }
-            if let Some(m) = s.get("maxItems").and_then(|x| x.as_u64()) {
-                if n > m {
-                    fail(format!("{n} items, at most {m} allowed"));
-                }
+            if let Some(m) = s.get("maxItems").and_then(|x| x.as_u64())
+                && n > m
+            {
+                fail(format!("{n} items, at most {m} allowed"));
             }
             if s.get("uniqueItems") == Some(&Value::Bool(true)) {
                 for (i, x) in items.iter().enumerate() {
@@ -230,10 +230,10 @@ impl Schema {
         }
         if let Some(o) = v.as_object() {
             let props = s.get("properties").and_then(|p| p.as_object());
-            if let Some(m) = s.get("minProperties").and_then(|x| x.as_u64()) {
-                if (o.len() as u64) < m {
-                    errors.push(format!("{at}: at least {m} keys required"));
-                }
+            if let Some(m) = s.get("minProperties").and_then(|x| x.as_u64())
+                && (o.len() as u64) < m
+            {
+                errors.push(format!("{at}: at least {m} keys required"));
             }
             if let Some(req) = s.get("required").and_then(|r| r.as_array()) {
                 for k in req.iter().filter_map(|k| k.as_str()) {
