@@ -779,10 +779,18 @@ pub fn coherence(
             // formed in double-double. Its distance from the continuous-spectrum form |γ(Δs)|
             // is the spectral sampling error ([`gaussian_sampling_error`]), reported apart.
             fwhm_m.ok_or("coherence_gaussian needs Gaussian light")?;
+            // The plate's thickness from exact coordinate differences of its faces' points
+            // (a plate 500 m from the origin: the f64 difference is ~1e-13 m off).
+            let (top, bottom, _) = layer_media(built, plate)?;
+            let (tp, bp) = (
+                &built.scene.surfaces[top].plane,
+                &built.scene.surfaces[bottom].plane,
+            );
+            let d = analytic::precise::dot(&analytic::precise::diff(tp.point, bp.point), tp.normal);
             let mut sum = 0.0;
             for &(lam, w) in spectrum {
                 let (a1, a2, film) = beams(lam)?;
-                let ds = twofloat::TwoFloat::new_mul(film.n2, film.thickness_m) * 2.0;
+                let ds = d * (2.0 * film.n2);
                 let c = analytic::precise::path_phasor(ds, lam).re;
                 sum += w * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * c);
             }

@@ -320,7 +320,8 @@ fn two_beam_plate(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
     let x1 = x0 * (1.0 + span) + 1e-9 * fit;
     // Direct rays cross the shield plane z = hs + ε within x1·ε/Δ of the source; reflected
     // rays no nearer than x0·2hs/(hs + ho).
-    let eps = dh * 1e-6;
+    // (At least 1e-11 m: the loader takes a source within 1e-12 m of a plane to lie on it.)
+    let eps = (dh * 1e-6).max(1e-11);
     let w_min = x1 * eps / dh;
     let w_max = x0 * 2.0 * hs / (hs + ho);
     if w_min * 100.0 > w_max {
