@@ -777,7 +777,7 @@ pub fn coherence(
             // across wavelength), so the reference is the same discrete sum of two-beam terms,
             // Σ w_i (a1² + a2² + 2 a1 a2 cos(2π Δs/λ_i)) (docs/PHYSICS.md §3), with Δs = 2 n2 d
             // formed in double-double. Its distance from the continuous-spectrum form |γ(Δs)|
-            // is the spectral sampling error ([`gaussian_sampling_error`]), reported apart.
+            // is the spectral sampling error ([`gaussian_sampling_error`]), not part of the verdict.
             fwhm_m.ok_or("coherence_gaussian needs Gaussian light")?;
             // The plate's thickness from exact coordinate differences of its faces' points
             // (a plate 500 m from the origin: the f64 difference is ~1e-13 m off).
@@ -840,7 +840,7 @@ pub fn coherence(
 /// The spectral sampling error of a `coherence_gaussian` case with Gaussian light at one probe
 /// point: the continuous-spectrum two-beam intensity (|γ(Δs)|, docs/PHYSICS.md §3) minus the
 /// discrete sum over the case's samples that the reference evaluates. It is a property of the
-/// case's `samples` and `sigmas`, not of the tracer, and is reported apart from the verdict.
+/// case's `samples` and `sigmas`, not of the tracer, and is not part of the verdict.
 pub fn gaussian_sampling_error(
     built: &Built,
     plate: &str,

@@ -713,8 +713,8 @@ fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Val
         0 => {
             let sigmas = d.real(7.0, 12.0).min(sigmas_max);
             // The reference is the same discrete sum as the tracer's, so any sampling is valid;
-            // beyond 4096 samples the spectrum is undersampled (the sampling error is reported
-            // apart from the verdict).
+            // beyond 4096 samples the spectrum is undersampled (the sampling error is not part
+            // of the verdict).
             let need = sigmas * (7.0 + ds_nm * sigma_k) / std::f64::consts::PI + 1.0;
             if need > 4096.0 {
                 tags.push("undersampled");
