@@ -682,8 +682,12 @@ fn residual(g: &Geometry, target: &Target, frame: (DVec3, DVec3, DVec3)) -> Opti
             if denom <= 0.0 {
                 return None;
             }
+            // o − p first: both are absolute coordinates (up to ~1000 m) and their difference
+            // is exact when they are near each other, so the residual keeps its digits at the
+            // scale of the path, not of the coordinates (the Jacobian's finite differences
+            // divide it by the launch step: 1/r² spreading 500 m from the origin was 1.8e-5 off).
             let t = (*p - o).dot(dref) / denom;
-            let x = o + t * d - *p;
+            let x = (o - *p) + t * d;
             Some([x.dot(f1), x.dot(f2)])
         }
         Target::Direction { .. } => Some([d.dot(f1), d.dot(f2)]),
@@ -998,15 +1002,16 @@ pub fn solve(
             reference_point,
         } => projection(direction.normalize(), g.points[0], reference_point)
             .mul_f64(optics.ambient_index),
-        // A line source's launch point, point + t·axis formed in f64, sits off the axis by a
-        // rounding (~1e-17 m at 0.1 m): the cylindrical wave's phase there is n δ·d for its
-        // offset δ perpendicular to the axis, not 0 (1e-11 of the Lloyd intensity in a rotated
-        // scene, tests/suite/truth.rs). Start the path at it, in double-double.
-        Emitter::Line { point, axis } => {
-            let (a, d) = (axis.normalize(), g.dirs[0]);
-            let o = g.points[0];
-            (projection(d, o, point) - projection(a, o, point).mul_f64(a.dot(d)))
-                .mul_f64(optics.ambient_index)
+        // A line source's launch point is an f64 point near the line, off it by up to ~ulp of its
+        // coordinates (2.8e-14 m at 183 m): measured from there the first segment would carry that
+        // as a first-order path error. The wave's phase at the first point is n times its
+        // perpendicular distance to the line itself (docs/PHYSICS.md §5 "Young"), formed from exact
+        // differences to the source's own point; the start corrects the first segment to it.
+        Emitter::Line { point, axis } if g.points.len() > 1 => {
+            let n0 = g.indices[0];
+            (distance_to_line(point, axis.normalize(), g.points[1])
+                - segment_length(g.points[0], g.points[1]))
+            .mul_f64(n0)
         }
         _ => DoubleDouble::ZERO,
     };
@@ -1018,6 +1023,24 @@ pub fn solve(
         (landing_error, iterations, spreading),
         start,
     )
+}
+
+/// The distance (m, double-double) from `x` to the line through `point` along the unit `axis`:
+/// |v − (v·a) a| with v = x − point from exact coordinate differences.
+fn distance_to_line(point: DVec3, axis: DVec3, x: DVec3) -> DoubleDouble {
+    use crate::double_double::two_diff;
+    let v = [
+        two_diff(x.x, point.x),
+        two_diff(x.y, point.y),
+        two_diff(x.z, point.z),
+    ];
+    let along = v[0] * axis.x + v[1] * axis.y + v[2] * axis.z;
+    let w = [
+        v[0] - along * axis.x,
+        v[1] - along * axis.y,
+        v[2] - along * axis.z,
+    ];
+    (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
 }
 
 /// Whether event `k` (`ev` at `x`) lies outside its surface's extent.

@@ -339,11 +339,29 @@ pub fn value(
                 h_src_m: plane.signed_distance(s),
                 h_obs_m: plane.signed_distance(p),
             };
+            // Beyond the critical angle of the top face (an ambient denser than the plate) the
+            // top beam is totally reflected and the plate carries an evanescent wave to the far
+            // face (frustrated total reflection): zero-thickness rays carry no such wave and the
+            // two-beam sum of propagating beams does not describe it (docs/PHYSICS.md §5).
+            let x = horiz.length();
+            let sin1 = x / x.hypot(t.h_src_m + t.h_obs_m);
+            if t.n1 * sin1 >= t.n2 {
+                return Err(format!(
+                    "the light meets the plate at θ1 = {:.4}°, at or beyond the critical angle \
+                     {:.4}° of its top face (n1 = {} > n2 = {}): it enters the plate only as an \
+                     evanescent wave (frustrated total reflection), which neither ray optics nor \
+                     the two-beam sum describes; keep θ1 below the critical angle",
+                    sin1.asin().to_degrees(),
+                    (t.n2 / t.n1).asin().to_degrees(),
+                    t.n1,
+                    t.n2
+                ));
+            }
             Ok(src.intensity
                 * if basis_free {
-                    t.intensity_unpolarized_basis_free(horiz.length(), lambda_m)
+                    t.intensity_unpolarized_basis_free(x, lambda_m)
                 } else {
-                    t.intensity_unpolarized(horiz.length(), lambda_m)
+                    t.intensity_unpolarized(x, lambda_m)
                 })
         }
         ReferenceModel::Airy {
@@ -780,22 +798,49 @@ pub fn coherence(
         ReferenceModel::CoherenceP9 { plate } => (plate, fwhm_m),
         _ => return Err("not a coherence reference".into()),
     };
-    let (film, cos1) = airy_film(built, plate, center_m)?;
-    if (cos1 - 1.0).abs() > 1e-12 {
-        return Err("coherence references need normal incidence".into());
-    }
     // Normal incidence: the two beams' amplitudes are r12 and t12 r23 t21 for any polarization.
-    let f12 = fresnel::fresnel(film.n1, film.n2, 1.0);
-    let f23 = fresnel::fresnel(film.n2, film.n3, 1.0);
-    let f21 = fresnel::fresnel(film.n2, film.n1, 1.0);
-    let a1 = f12.r_s.re;
-    let a2 = (f12.t_s * f23.r_s * f21.t_s).re;
+    let beams = |lambda_m: f64| -> Result<(f64, f64, analytic::plate::Film), String> {
+        let (film, cos1) = airy_film(built, plate, lambda_m)?;
+        if (cos1 - 1.0).abs() > 1e-12 {
+            return Err("coherence references need normal incidence".into());
+        }
+        let f12 = fresnel::fresnel(film.n1, film.n2, 1.0);
+        let f23 = fresnel::fresnel(film.n2, film.n3, 1.0);
+        let f21 = fresnel::fresnel(film.n2, film.n1, 1.0);
+        Ok((f12.r_s.re, (f12.t_s * f23.r_s * f21.t_s).re, film))
+    };
+    let (a1, a2, film) = beams(center_m)?;
     let ds = 2.0 * film.n2 * film.thickness_m;
     let src = &built.scene.sources[0];
     let i0 = src.intensity;
     match model {
+        ReferenceModel::CoherenceGaussian { fwhm_nm: None, .. } => {
+            // Gaussian light: the case's sampled spectrum is what the tracer sums (incoherent
+            // across wavelength), so the reference is the same discrete sum of two-beam terms,
+            // Σ w_i (a1² + a2² + 2 a1 a2 cos(2π Δs/λ_i)) (docs/PHYSICS.md §3), with Δs = 2 n2 d
+            // formed in double-double. Its distance from the continuous-spectrum form |γ(Δs)|
+            // is the spectral sampling error ([`gaussian_sampling_error`]), not part of the verdict.
+            fwhm_m.ok_or("coherence_gaussian needs Gaussian light")?;
+            // The plate's thickness from exact coordinate differences of its faces' points
+            // (a plate 500 m from the origin: the f64 difference is ~1e-13 m off).
+            let (top, bottom, _) = layer_media(built, plate)?;
+            let (tp, bp) = (
+                &built.scene.surfaces[top].plane,
+                &built.scene.surfaces[bottom].plane,
+            );
+            let d = analytic::precise::dot(&analytic::precise::diff(tp.point, bp.point), tp.normal);
+            let mut sum = 0.0;
+            for &(lam, w) in spectrum {
+                let (a1, a2, film) = beams(lam)?;
+                let ds = d * (2.0 * film.n2);
+                let c = analytic::precise::path_phasor(ds, lam).re;
+                sum += w * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * c);
+            }
+            Ok(i0 * sum)
+        }
         ReferenceModel::CoherenceGaussian { .. } => {
-            // Gaussian spectrum in k: ⟨cos(kΔs)⟩ = |γ(Δs)| cos(k0 Δs) exactly.
+            // Monochrome light with the truth's bandwidth `fwhm_nm`: the continuous Gaussian
+            // spectrum in k, ⟨cos(kΔs)⟩ = |γ(Δs)| cos(k0 Δs) exactly.
             let fwhm = fwhm_m.ok_or("coherence_gaussian needs Gaussian light")?;
             let gamma = analytic::coherence::gaussian_visibility(ds, center_m, fwhm);
             let delta = std::f64::consts::TAU * ds / center_m;
@@ -832,4 +877,38 @@ pub fn coherence(
             Ok(i0 * sum)
         }
     }
+}
+
+/// The spectral sampling error of a `coherence_gaussian` case with Gaussian light at one probe
+/// point: the continuous-spectrum two-beam intensity (|γ(Δs)|, docs/PHYSICS.md §3) minus the
+/// discrete sum over the case's samples that the reference evaluates. It is a property of the
+/// case's `samples` and `sigmas`, not of the tracer, and is not part of the verdict.
+pub fn gaussian_sampling_error(
+    built: &Built,
+    plate: &str,
+    target: &Target,
+    spectrum: &[(f64, f64)],
+    center_m: f64,
+    fwhm_m: f64,
+) -> Result<f64, String> {
+    let model = ReferenceModel::CoherenceGaussian {
+        plate: plate.to_string(),
+        fwhm_nm: None,
+    };
+    let sampled = coherence(&model, built, target, spectrum, center_m, Some(fwhm_m))?;
+    let (film, _) = airy_film(built, plate, center_m)?;
+    let f12 = fresnel::fresnel(film.n1, film.n2, 1.0);
+    let f23 = fresnel::fresnel(film.n2, film.n3, 1.0);
+    let f21 = fresnel::fresnel(film.n2, film.n1, 1.0);
+    let (a1, a2) = (f12.r_s.re, (f12.t_s * f23.r_s * f21.t_s).re);
+    let ds = 2.0 * film.n2 * film.thickness_m;
+    let gamma = analytic::coherence::gaussian_visibility(ds, center_m, fwhm_m);
+    let c = analytic::precise::path_phasor(
+        twofloat::TwoFloat::new_mul(film.n2, film.thickness_m) * 2.0,
+        center_m,
+    )
+    .re;
+    let continuous =
+        built.scene.sources[0].intensity * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * gamma * c);
+    Ok(continuous - sampled)
 }

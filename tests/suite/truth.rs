@@ -341,3 +341,121 @@ fn every_library_case_sees_errors_of_its_tolerance() {
         }
     }
 }
+
+/// Gaussian light is traced as a finite sum over its spectral samples (incoherent across
+/// wavelength), so `coherence_gaussian` judges the tracer against that same sum,
+/// Σ w_i (a1² + a2² + 2 a1 a2 cos(2π·2nd/λ_i)), evaluated here independently from the
+/// documented sampling (k_i = k0 + x_i σ_k over ±sigmas, trapezoid weights). With three
+/// samples over ±3σ the continuous-spectrum form |γ(Δs)| differs from it by O(1e-2) (the
+/// sampling error, a property of the case): before the reference became the sampled sum, such
+/// cases failed although the tracer was right.
+#[test]
+fn a_gaussian_spectrum_is_judged_by_its_own_sampled_sum() {
+    let mut doc = library("coherence_length");
+    doc["light"]["gaussian"]["samples"] = json!(3);
+    doc["light"]["gaussian"]["sigmas"] = json!(3.0);
+    doc["probe"]["sweep"]["count"] = json!(7);
+    doc["probe"]["sweep"]["to"] = json!(20000);
+    let r = run::run_with(&parse(&doc), false).expect("runs");
+    let m = &r.metrics[0];
+    let (n, lambda0, fwhm) = (1.5f64, 550e-9f64, 10e-9f64);
+    let tau = std::f64::consts::TAU;
+    let k0 = tau / lambda0;
+    let sigma = tau * fwhm / (lambda0 * lambda0) / (2.0 * (2.0 * 2f64.ln()).sqrt());
+    let samples: Vec<(f64, f64)> = [(-3.0, 0.5), (0.0, 1.0), (3.0, 0.5)]
+        .iter()
+        .map(|&(x, t): &(f64, f64)| (k0 + x * sigma, t * (-0.5 * x * x).exp()))
+        .collect();
+    let total: f64 = samples.iter().map(|s| s.1).sum();
+    let (a1, a2) = (
+        (1.0 - n) / (1.0 + n),
+        2.0 / (1.0 + n) * (n - 1.0) / (n + 1.0) * 2.0 * n / (n + 1.0),
+    );
+    let mut sampling_error = 0.0f64;
+    for (k, &t_nm) in m.coordinates.iter().enumerate() {
+        let ds = 2.0 * n * t_nm * 1e-9;
+        let sum: f64 = samples
+            .iter()
+            .map(|&(kk, w)| w / total * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * (kk * ds).cos()))
+            .sum();
+        let peak = (a1.abs() + a2.abs()).powi(2);
+        assert!(
+            (m.analytic[k] - sum).abs() <= 1e-12 * peak,
+            "thickness {t_nm} nm: reference {:e}, the sampled sum {sum:e}",
+            m.analytic[k]
+        );
+        let gamma = fringe::analytic::coherence::gaussian_visibility(ds, lambda0, fwhm);
+        let continuous = a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * gamma * (k0 * ds).cos();
+        sampling_error = sampling_error.max((continuous - sum).abs() / peak);
+    }
+    assert!(
+        sampling_error > 1e-3,
+        "the case must be undersampled for this test to mean anything: {sampling_error:e}"
+    );
+    assert_passes("coherence_length, 3 samples", &r);
+}
+
+/// An ambient denser than the plate, light beyond the top face's critical angle: the plate
+/// carries an evanescent wave (frustrated total reflection), which zero-thickness rays cannot
+/// carry. The `two_beam_plate` reference refuses with that reason instead of a NaN row (the
+/// fuzzer's `tests/fuzz_found/fuzz_two_beam_plate_s1_11.json`: n = 2 over n = 1.5, 50°–67°).
+#[test]
+fn a_plate_beyond_its_critical_angle_is_refused_as_frustrated_total_reflection() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fuzz_found/fuzz_two_beam_plate_s1_11.json");
+    let doc: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let err = run::run_with(&parse(&doc), false).expect_err("refused");
+    assert!(
+        err.message.contains("frustrated total reflection")
+            && err.json_path.starts_with("$.references"),
+        "{}: {}",
+        err.json_path,
+        err.message
+    );
+}
+
+/// The numbers of a case file are the numbers traced and judged: a coordinate is read as the
+/// f64 nearest its decimal text (serde_json's `float_roundtrip`; its default fast path can be
+/// one ulp off). Young's slits 183 m from the origin (`tests/fuzz_found/fuzz_young_exact_s1_5`,
+/// n = 2, 200 nm): one ulp of a coordinate there is 2.8e-14 m, 0.3 mrad of phase, 3e-8 of
+/// the intensity. The closed form at the first probe point against a 50-digit evaluation
+/// (mpmath: perpendicular distances to the exactly normalized slit axis, δ = 2π n (r1 − r2)/λ,
+/// I = 2 + (1 + cos α) cos δ for unpolarized light) of the file's decimal numbers.
+///
+/// The tracer on the same scene: a line source's rays start at an f64 point near the line (off
+/// it by ~ulp(183 m)), a first-order path error of ~1e-14 m (1.4e-8 of the intensity here);
+/// the first segment is now measured from the line itself (`path::solve`).
+#[test]
+fn young_far_from_the_origin_is_read_and_traced_exactly() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fuzz_found/fuzz_young_exact_s1_5.json");
+    let doc: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let x = doc["scene"]["sources"][0]["emitter"]["line"]["point_m"][2]
+        .as_f64()
+        .unwrap();
+    assert_eq!(x, 183.3124144416023, "serde_json read {x:e}");
+    let r = run::run_with(&parse(&doc), false).expect("runs");
+    let m = &r.metrics[0];
+    let exact = 3.9960036072722906309;
+    assert!(
+        (m.analytic[0] - exact).abs() <= 1e-13,
+        "closed form {:.17e}, 50 digits {exact:.17e}",
+        m.analytic[0]
+    );
+    assert_passes("fuzz_young_exact_s1_5", &r);
+}
+
+/// Mutually incoherent point sources 500 m from the origin (`tests/fuzz_found/
+/// fuzz_incoherent_sum_s1_92.json`, spreading on): the traced intensity is Σ I_k/r_k², which
+/// the closed form evaluates directly. The tracer's spreading comes from the Jacobian of the
+/// landing residual by finite differences; the residual was formed from absolute coordinates
+/// (o + t d − p), so at 500 m it carried ~1e-13 m of rounding against a launch step of ~1e-6 r,
+/// and the spreading was 1.8e-5 off.
+#[test]
+fn spreading_far_from_the_origin_is_exact() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fuzz_found/fuzz_incoherent_sum_s1_92.json");
+    let doc: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let r = run::run_with(&parse(&doc), false).expect("runs");
+    assert_passes("fuzz_incoherent_sum_s1_92", &r);
+}
