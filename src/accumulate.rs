@@ -447,10 +447,12 @@ impl Accumulator {
         }
     }
 
+    /// The summation scheme this accumulator adds fields and intensities with.
     pub fn summation(&self) -> Summation {
         self.summation
     }
 
+    /// Removes every contribution, keeping the summation scheme (and the allocation).
     pub fn clear(&mut self) {
         self.table.clear();
         self.incoherent = CompSum::default();

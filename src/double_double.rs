@@ -65,6 +65,7 @@ pub fn two_prod(a: f64, b: f64) -> DoubleDouble {
 }
 
 impl DoubleDouble {
+    /// Zero (both parts 0).
     pub const ZERO: DoubleDouble = DoubleDouble { hi: 0.0, lo: 0.0 };
 
     /// The f64 `x` exactly.

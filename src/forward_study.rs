@@ -19,7 +19,6 @@ use crate::source::{Emitter, Polarization, Source};
 use crate::trace::{self, TraceSettings};
 use glam::DVec3;
 use rayon::prelude::*;
-use std::fmt::Write as _;
 use std::time::Instant;
 
 /// A forward-mode test scene.
@@ -298,25 +297,32 @@ pub fn run_observed(
     rows
 }
 
-/// The study as CSV.
+/// The study as CSV (written by the `csv` crate through [`crate::report::csv_text`]).
 pub fn csv(rows: &[StudyRow]) -> String {
-    let mut s = String::from(
-        "scene,estimator,pixels,pixel_over_fringe,rays_per_channel,mean_rays_per_pixel_per_channel,rel_rms_error,rel_max_error,seconds\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{},{:.4},{},{:.2},{:.4e},{:.4e},{:.3}",
-            r.scene,
-            r.estimator,
-            r.pixels,
-            r.pixel_over_fringe,
-            r.rays_per_channel,
-            r.mean_rays_per_pixel,
-            r.rel_rms_error,
-            r.rel_max_error,
-            r.seconds
-        );
-    }
-    s
+    crate::report::csv_text(
+        &[
+            "scene",
+            "estimator",
+            "pixels",
+            "pixel_over_fringe",
+            "rays_per_channel",
+            "mean_rays_per_pixel_per_channel",
+            "rel_rms_error",
+            "rel_max_error",
+            "seconds",
+        ],
+        rows.iter().map(|r| {
+            vec![
+                r.scene.to_string(),
+                r.estimator.to_string(),
+                r.pixels.to_string(),
+                format!("{:.4}", r.pixel_over_fringe),
+                r.rays_per_channel.to_string(),
+                format!("{:.2}", r.mean_rays_per_pixel),
+                format!("{:.4e}", r.rel_rms_error),
+                format!("{:.4e}", r.rel_max_error),
+                format!("{:.3}", r.seconds),
+            ]
+        }),
+    )
 }

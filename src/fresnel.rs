@@ -48,9 +48,13 @@ pub struct FresnelCoefficients {
 /// Power reflectance and transmittance for s and p: R = |r|², T = Re(n2 cos θt)/(n1 cos θi)·|t|².
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct FresnelPower {
+    /// Power reflectance for s, R_s = |r_s|² (dimensionless, in [0, 1]).
     pub r_s: f64,
+    /// Power reflectance for p, R_p = |r_p|².
     pub r_p: f64,
+    /// Power transmittance for s, T_s = Re(n2 cos θt)/(n1 cos θi)·|t_s|² (0 under TIR).
     pub t_s: f64,
+    /// Power transmittance for p, T_p = Re(n2 cos θt)/(n1 cos θi)·|t_p|² (0 under TIR).
     pub t_p: f64,
 }
 

@@ -50,6 +50,7 @@ struct BuildNode {
 }
 
 impl TreeBuilder {
+    /// A builder holding only the root (the empty sequence).
     pub fn new() -> Self {
         TreeBuilder {
             nodes: vec![BuildNode::default()],
@@ -135,6 +136,7 @@ impl SequenceTree {
         self.nodes.iter().filter(|n| n.candidate).count()
     }
 
+    /// No candidate sequence at all.
     pub fn is_empty(&self) -> bool {
         self.len() == 0
     }

@@ -46,7 +46,7 @@ fn tick_formatter(y0: f64, y1: f64) -> impl Fn(f64) -> String {
     let span = (y1 - y0).abs().max(f64::MIN_POSITIVE);
     let magnitude = y0.abs().max(y1.abs());
     let decimals = (-span.log10()).ceil().max(0.0) as usize + 1;
-    let scientific = magnitude < 1e-3 || magnitude >= 1e5 || decimals > 6;
+    let scientific = !(1e-3..1e5).contains(&magnitude) || decimals > 6;
     // Significant digits that still separate ticks a tenth of the span apart.
     let digits = ((magnitude / span).log10().ceil().max(0.0) as usize + 1).min(10);
     move |v: f64| {

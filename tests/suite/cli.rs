@@ -653,7 +653,8 @@ fn render_refuses_bad_samples_and_non_png_outputs_as_user_errors() {
     assert!(absent_or_empty(dir.path()));
 }
 
-/// A copy of the built binary outside the checkout, as an installed `fringe` would be.
+/// The built binary run from a temporary directory (no `cases/` or `golden/` there): the library
+/// is found in the checkout it was built from, or under `FRINGE_ROOT`.
 #[test]
 fn library_commands_work_from_any_directory() {
     let cwd = tempfile::tempdir().unwrap();
