@@ -8,7 +8,7 @@ use crate::analytic::{self, michelson, plate::Pol};
 use crate::fresnel;
 use crate::material::Medium;
 use crate::observable::{Observable, Returns, power_factor};
-use crate::path::Target;
+use crate::path::{Event, EventKind, Target};
 use crate::scene::SurfaceKind;
 use crate::source::{Channel, Emitter, Source};
 use glam::DVec3;
@@ -768,6 +768,50 @@ fn michelson_ref(
             ch.intensity * michelson::intensity(&arms, s, p, lambda_m, n, |d| ch.launch_field(d))
         })
         .sum())
+}
+
+/// The surface sequences the Michelson closed form models ([`michelson_ref`]): for each mirror,
+/// splitter (reflect) → mirror → splitter (transmit) when the mirror is on the source's side of
+/// the splitter, else splitter (transmit) → mirror → splitter (reflect). Light that reaches the
+/// probe along any other sequence (a mirror large enough to be lit directly, a second pass
+/// through the splitter) is outside the two-arm closed form, and a case whose scene lets it
+/// through is refused by the runner rather than compared (docs/PHYSICS.md §5 "Michelson").
+pub fn michelson_sequences(
+    built: &Built,
+    splitter: &str,
+    mirrors: &[String; 2],
+) -> Result<Vec<Vec<Event>>, String> {
+    let scene = &built.scene;
+    let b = built.surface(splitter)?;
+    let src = scene.sources.first().ok_or("michelson needs a source")?;
+    let Emitter::Point { position: s } = src.emitter else {
+        return Err("michelson needs a point source".into());
+    };
+    let plane = &scene.surfaces[b].plane;
+    let side_src = plane.signed_distance(s).signum();
+    let ev = |surface, kind| Event { surface, kind };
+    mirrors
+        .iter()
+        .map(|m| {
+            let mi = built.surface(m)?;
+            let side_m = plane
+                .signed_distance(scene.surfaces[mi].plane.point)
+                .signum();
+            Ok(if side_m == side_src {
+                vec![
+                    ev(b, EventKind::Reflect),
+                    ev(mi, EventKind::Reflect),
+                    ev(b, EventKind::Refract),
+                ]
+            } else {
+                vec![
+                    ev(b, EventKind::Refract),
+                    ev(mi, EventKind::Reflect),
+                    ev(b, EventKind::Reflect),
+                ]
+            })
+        })
+        .collect()
 }
 
 /// The coherence references over the whole spectrum: plane wave at normal incidence on a

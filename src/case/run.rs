@@ -8,7 +8,7 @@ use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
 use crate::accumulate::Accumulator;
 use crate::fidelity::{self, Fidelity, SceneNeeds};
 use crate::observable::{Observable, Returns, check_match};
-use crate::path::{EnumerationLimits, SolveOptions, Target};
+use crate::path::{EnumerationLimits, EventKind, SolveOptions, Target};
 use crate::source::Emitter;
 use crate::trace::{self, Arrival, TraceSettings};
 use glam::DVec3;
@@ -614,6 +614,41 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
                     _ => v,
                 };
                 out.analytic[ri] += w * v;
+            }
+        }
+        for (ri, r) in spec.references.iter().enumerate() {
+            if let ReferenceModel::Michelson { splitter, mirrors } = &r.model {
+                let modeled = reference::michelson_sequences(built, splitter, mirrors)
+                    .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
+                if let Some(a) = arr
+                    .iter()
+                    .find(|a| !modeled.iter().any(|m| a.path.sequence.iter().eq(m.iter())))
+                {
+                    let names: Vec<String> = a
+                        .path
+                        .sequence
+                        .iter()
+                        .map(|e| {
+                            let verb = match e.kind {
+                                EventKind::Reflect => "reflected by",
+                                EventKind::Refract => "through",
+                            };
+                            format!("{verb} {:?}", built.scene.surfaces[e.surface].name)
+                        })
+                        .collect();
+                    return Err(case_err(
+                        case,
+                        &format!("$.references[{ri}].model"),
+                        format!(
+                            "light reaches the probe along a path the two-arm michelson \
+                             closed form does not model (source, {}, probe): the scene is not a \
+                             Michelson interferometer there; shield that path (a pinhole, \
+                             smaller mirrors) or move the probe (at {:?})",
+                            names.join(", "),
+                            target
+                        ),
+                    ));
+                }
             }
         }
         if k == spectrum.len() / 2 {

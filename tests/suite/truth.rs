@@ -459,3 +459,24 @@ fn spreading_far_from_the_origin_is_exact() {
     let r = run::run_with(&parse(&doc), false).expect("runs");
     assert_passes("fuzz_incoherent_sum_s1_92", &r);
 }
+
+/// A Michelson scene whose first mirror is large enough to be lit directly by the source: light
+/// also reaches the probe along source → m1 → splitter (transmitted) → probe, through the
+/// pinhole (`tests/fuzz_found/fuzz_michelson_s1_4.json`; the tracer finds it, traced 0.686
+/// against the two-arm closed form's 0.123). The two-arm closed form does not describe that
+/// scene, so the case is refused naming the unmodelled path, never compared.
+#[test]
+fn a_michelson_scene_with_a_path_outside_the_two_arms_is_refused() {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/fuzz_found/fuzz_michelson_s1_4.json");
+    let doc: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
+    let err = run::run_with(&parse(&doc), false).expect_err("refused");
+    assert!(
+        err.json_path == "$.references[0].model"
+            && err.message.contains("does not model")
+            && err.message.contains("reflected by \"m1\", through \"splitter\""),
+        "{}: {}",
+        err.json_path,
+        err.message
+    );
+}
