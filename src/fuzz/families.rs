@@ -208,12 +208,14 @@ fn incidence_sweep(d: &mut Draws, theta: f64, azimuth_deg: f64, observe: Value) 
 }
 
 /// Linear polarization about `reference` (option 0 at 0°, option 1 at any angle in
-/// [−360°, 360°]) or unpolarized (option 2).
+/// [−360°, 360°]), unpolarized in the paper's two-channel model (option 2) or basis-free
+/// unpolarized light (option 3, three dipole channels, docs/PHYSICS.md §3).
 fn polarization(d: &mut Draws, reference: [f64; 3]) -> Value {
-    match d.choose(3) {
+    match d.choose(4) {
         0 => json!({"linear": {"reference": reference, "angle_deg": 0.0}}),
         1 => json!({"linear": {"reference": reference, "angle_deg": d.real(-360.0, 360.0)}}),
-        _ => json!({"unpolarized": {"model": "paper_two_channel", "reference": reference}}),
+        2 => json!({"unpolarized": {"model": "paper_two_channel", "reference": reference}}),
+        _ => json!({"unpolarized": {}}),
     }
 }
 
@@ -243,8 +245,9 @@ fn young(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let fringe = nm * 1e-9 * (l * l + sep * sep / 4.0).sqrt() / (n0 * sep);
     let centre = (fringe * d.real(-50.0, 50.0)).clamp(-REACH_M / 2.0, REACH_M / 2.0);
     let half = (fringe * d.log(1e-2, 10.0)).min(REACH_M / 2.0);
-    let pol = match d.choose(3) {
+    let pol = match d.choose(4) {
         0 => json!({"unpolarized": {"model": "paper_two_channel", "reference": [0, 0, 1]}}),
+        3 => json!({"unpolarized": {}}),
         1 => json!({"linear": {"reference": [0, 0, 1], "angle_deg": 0.0}}),
         _ => {
             json!({"linear": {"reference": [0, 0, 1], "angle_deg": 90.0 * (d.choose(9) as f64 - 4.0)}})
@@ -328,6 +331,12 @@ fn two_beam_plate(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
         return Err("two_beam_plate: at near-normal incidence the direct and reflected rays of a point source cannot be separated by a shield".into());
     }
     let w = (w_min * w_max).sqrt();
+    // Unpolarized light, basis-free (three dipole channels) or in the paper's two channels.
+    let pol = if d.flag(0.5) {
+        json!({"unpolarized": {}})
+    } else {
+        json!({"unpolarized": {"model": "paper_two_channel", "reference": [0, 1, 0]}})
+    };
     Ok(case(
         monochrome(nm),
         json!({"ambient": constant(n0), "glass": constant(n)}),
@@ -338,7 +347,7 @@ fn two_beam_plate(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
                         "rect": {"size_m": [2.0 * w, 2.0 * w], "u_axis": [1, 0, 0]}}}
         ]),
         json!([{"name": "lamp", "emitter": {"point": {"position_m": [0, 0, hs]}},
-                "polarization": {"unpolarized": {"model": "paper_two_channel", "reference": [0, 1, 0]}}, "intensity": intensity(d)}]),
+                "polarization": pol, "intensity": intensity(d)}]),
         json!({"line": {"from_m": [x0, 0, ho], "to_m": [x1, 0, ho], "count": line_count(d)}}),
         json!({"two_beam_plate": {"plate": "plate"}}),
         json!({}),

@@ -467,14 +467,16 @@ fn spreading_far_from_the_origin_is_exact() {
 /// scene, so the case is refused naming the unmodelled path, never compared.
 #[test]
 fn a_michelson_scene_with_a_path_outside_the_two_arms_is_refused() {
-    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-        .join("tests/fuzz_found/fuzz_michelson_s1_4.json");
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join("tests/fuzz_found/fuzz_michelson_s1_4.json");
     let doc: Value = serde_json::from_str(&std::fs::read_to_string(path).unwrap()).unwrap();
     let err = run::run_with(&parse(&doc), false).expect_err("refused");
     assert!(
         err.json_path == "$.references[0].model"
             && err.message.contains("does not model")
-            && err.message.contains("reflected by \"m1\", through \"splitter\""),
+            && err
+                .message
+                .contains("reflected by \"m1\", through \"splitter\""),
         "{}: {}",
         err.json_path,
         err.message
