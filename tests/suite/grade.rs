@@ -92,7 +92,7 @@ fn export_writes_the_pack_another_tracer_needs() {
     assert_eq!(pack["conventions"]["time_dependence"], "e^{-iωt}");
     assert_eq!(
         pack["quantities"][0]["references"][0]["tolerances"]["vector"],
-        1e-11
+        1e-12
     );
     assert_eq!(pack["spectrum"][0]["wavelength_nm"], 550.0);
     // The expected closed form in the pack is the Airy formula evaluated here.
