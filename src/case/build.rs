@@ -549,17 +549,31 @@ pub fn plane_wave(scene: &Scene) -> Option<(DVec3, DVec3)> {
     })
 }
 
-/// The tracer target of an observer at wavelength `lambda_m`.
+/// The tracer target of an observer at wavelength `lambda_m`; an error where no wave
+/// propagates toward it ([`propagating_target`]).
 pub fn target(observer: &Observer, built: &Built, lambda_m: f64) -> Result<Target, String> {
+    propagating_target(observer, built, lambda_m)?
+        .ok_or_else(|| "no transmitted wave: total internal reflection".to_string())
+}
+
+/// The tracer target of an observer at wavelength `lambda_m`, or `None` for a transmitted
+/// far-field probe beyond the critical angle of the ambient → exit medium pair: no transmitted
+/// plane wave propagates there, nothing arrives, and the power transmittance is exactly 0
+/// (docs/PHYSICS.md §3a), which the runner records instead of refusing the sweep.
+pub fn propagating_target(
+    observer: &Observer,
+    built: &Built,
+    lambda_m: f64,
+) -> Result<Option<Target>, String> {
     match observer {
-        Observer::Point { position_m, .. } => Ok(Target::Point(v(position_m))),
+        Observer::Point { position_m, .. } => Ok(Some(Target::Point(v(position_m)))),
         Observer::Direction {
             direction,
             reference_point_m,
-        } => Ok(Target::Direction {
+        } => Ok(Some(Target::Direction {
             dir: v(direction).normalize(),
             reference: v(reference_point_m),
-        }),
+        })),
         Observer::FarField {
             side,
             surface_normal,
@@ -569,7 +583,7 @@ pub fn target(observer: &Observer, built: &Built, lambda_m: f64) -> Result<Targe
                 plane_wave(&built.scene).ok_or("a far_field observer needs a plane-wave source")?;
             let n = v(surface_normal).normalize();
             let dir = match side {
-                FarSide::Reflected => crate::fresnel::reflect(d, n),
+                FarSide::Reflected => Some(crate::fresnel::reflect(d, n)),
                 FarSide::Transmitted => {
                     let n1 = built
                         .scene
@@ -584,10 +598,9 @@ pub fn target(observer: &Observer, built: &Built, lambda_m: f64) -> Result<Targe
                         None => n1,
                     };
                     crate::fresnel::refract(d, n, n1, n3)
-                        .ok_or("no transmitted wave: total internal reflection")?
                 }
             };
-            Ok(Target::Direction { dir, reference })
+            Ok(dir.map(|dir| Target::Direction { dir, reference }))
         }
     }
 }

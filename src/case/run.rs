@@ -140,6 +140,9 @@ struct PointOut {
     special: Vec<BTreeMap<Fidelity, f64>>,
     needs: SceneNeeds,
     arrivals: usize,
+    /// No wave propagates toward the probe at the centre wavelength (a transmitted far-field
+    /// probe beyond the critical angle): dark by physics, T = 0.
+    evanescent: bool,
     internal: usize,
 }
 
@@ -252,8 +255,11 @@ fn point_work(
         .scene
         .optics(lambda)
         .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-    let target =
-        build::target(&pt.observer, &built, lambda).map_err(|e| case_err(case, "$.probe", e))?;
+    let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
+        .map_err(|e| case_err(case, "$.probe", e))?
+    else {
+        return Ok((0.0, true)); // no transmitted wave: nothing is traced
+    };
     let walked = !matches!(pt.observer, Observer::Point { .. })
         && built
             .scene
@@ -503,7 +509,9 @@ pub(super) struct Sample {
     pub index: usize,
     pub lambda_m: f64,
     pub weight: f64,
-    pub target: Target,
+    /// `None` where no wave propagates toward the probe (a transmitted far-field probe beyond
+    /// the critical angle, [`build::propagating_target`]): no arrivals, observable 0.
+    pub target: Option<Target>,
     /// The factor from |E|² to the probe's observable ([`reference::observable_factor`]).
     pub factor: f64,
     pub arrivals: Vec<Arrival>,
@@ -532,8 +540,21 @@ pub(super) fn trace_point(
             .scene
             .optics(lambda_m)
             .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-        let target = build::target(&pt.observer, &built, lambda_m)
-            .map_err(|e| case_err(case, "$.probe", e))?;
+        let Some(target) = build::propagating_target(&pt.observer, &built, lambda_m)
+            .map_err(|e| case_err(case, "$.probe", e))?
+        else {
+            // No transmitted wave propagates (beyond the critical angle): nothing arrives.
+            let sample = Sample {
+                index,
+                lambda_m,
+                weight,
+                target: None,
+                factor: 0.0,
+                arrivals: Vec::new(),
+            };
+            visit(&built, &spectrum, sample)?;
+            continue;
+        };
         let arrivals = match &last {
             Some((o, t, arr))
                 if *t == target
@@ -555,7 +576,7 @@ pub(super) fn trace_point(
             index,
             lambda_m,
             weight,
-            target,
+            target: Some(target),
             factor,
             arrivals,
         };
@@ -572,6 +593,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
         special: vec![BTreeMap::new(); spec.references.len()],
         needs: SceneNeeds::default(),
         arrivals: 0,
+        evanescent: false,
         internal: 0,
     };
     let mut center_arrivals = Vec::new();
@@ -607,7 +629,9 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
                     ReferenceModel::CoherenceGaussian { .. } | ReferenceModel::CoherenceP9 { .. }
                 )
             {
-                let v = reference::value(&r.model, built, &target, lambda, spec.trace.spreading)
+                // Beyond the critical angle no transmitted wave exists: T = 0 exactly.
+                let Some(target) = &target else { continue };
+                let v = reference::value(&r.model, built, target, lambda, spec.trace.spreading)
                     .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
                 let v = match reference::returns(&r.model) {
                     Some(Returns::AsProbe) => v * factor,
@@ -655,20 +679,35 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             out.arrivals = arr.len();
             out.needs = trace::needs(&arr);
             center_arrivals = arr;
-            center_target = Some(target);
+            out.evanescent = target.is_none();
+            center_target = target;
             center = lambda;
         }
         Ok(())
     })?;
     out.internal = internal;
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
-    let target = center_target.expect("the spectrum has at least one sample");
+    // The centre sample's target: the metrics below need a propagating wave there.
+    let centre_target = || {
+        center_target.as_ref().ok_or_else(|| {
+            case_err(
+                case,
+                "$.probe",
+                "no transmitted wave: total internal reflection",
+            )
+        })
+    };
     for (ri, r) in spec.references.iter().enumerate() {
         match reference::kind(&r.model) {
             MetricKind::Retardance | MetricKind::Visibility => {
-                out.analytic[ri] =
-                    reference::value(&r.model, &built, &target, center, spec.trace.spreading)
-                        .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
+                out.analytic[ri] = reference::value(
+                    &r.model,
+                    &built,
+                    centre_target()?,
+                    center,
+                    spec.trace.spreading,
+                )
+                .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
                 for l in levels {
                     if let Some(v) = special_value(&r.model, &built, &center_arrivals, *l) {
                         out.special[ri].insert(*l, v);
@@ -683,9 +722,15 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             {
                 let g = gaussian(&spec.light);
                 let c = g.map(|g| g.0).unwrap_or(center);
-                out.analytic[ri] =
-                    reference::coherence(&r.model, &built, &target, &spectrum, c, g.map(|g| g.1))
-                        .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
+                out.analytic[ri] = reference::coherence(
+                    &r.model,
+                    &built,
+                    centre_target()?,
+                    &spectrum,
+                    c,
+                    g.map(|g| g.1),
+                )
+                .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
             }
             _ => {}
         }
@@ -815,8 +860,10 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         .map(|pt| run_point(case, pt, &levels))
         .collect::<Result<_, _>>()?;
     let trace_seconds = t0.elapsed().as_secs_f64();
+    // A probe that no light reaches is refused as misplaced, unless every point is dark by
+    // physics (beyond the critical angle, no transmitted wave: T = 0 is compared as such).
     let dark_points = outs.iter().filter(|o| o.arrivals == 0).count();
-    if dark_points == points.len() {
+    if dark_points == points.len() && !outs.iter().all(|o| o.evanescent) {
         return Err(case_err(
             case,
             "$.probe",
@@ -1086,8 +1133,11 @@ fn convergence(case: &Case, points: &[ProbePoint]) -> Result<Vec<ConvergenceRow>
                     .scene
                     .optics(lambda)
                     .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-                let target = build::target(&pt.observer, &built, lambda)
-                    .map_err(|e| case_err(case, "$.probe", e))?;
+                let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
+                    .map_err(|e| case_err(case, "$.probe", e))?
+                else {
+                    return Ok((0.0, 0.0)); // no transmitted wave: T = 0 traced and exact
+                };
                 let st = settings(case, &built, internal);
                 let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
                     .map_err(|e| case_err(case, "$.probe", e))?;

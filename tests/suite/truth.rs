@@ -482,3 +482,75 @@ fn a_michelson_scene_with_a_path_outside_the_two_arms_is_refused() {
         err.message
     );
 }
+
+/// A transmitted far-field sweep across the critical angle (glass n = 1.5 into air, s light,
+/// 0°–80° in 5° steps; θc = 41.81°) is traced point by point: below θc the power transmittance
+/// is 1 − |r_s|² of the Fresnel coefficient evaluated here, beyond it no transmitted wave
+/// propagates and T = 0 exactly, traced and closed form alike (issue #12 item 5; the sweep used
+/// to be refused whole with "no transmitted wave").
+#[test]
+fn a_transmitted_sweep_across_the_critical_angle_is_zero_beyond_it() {
+    let doc = json!({
+        "name": "tir_sweep",
+        "description": "transmission out of glass across the critical angle",
+        "formula": "T = 1 - |r_s|^2 below the critical angle, 0 beyond",
+        "light": { "monochrome": { "wavelength_nm": 550 } },
+        "scene": {
+            "ambient": "glass",
+            "media": { "air": { "constant": { "n": 1.0 } }, "glass": { "constant": { "n": 1.5 } } },
+            "surfaces": [ { "interface": { "name": "face", "point_m": [0, 0, 0], "normal": [0, 0, 1],
+                                           "front": "glass", "back": "air" } } ],
+            "sources": [ { "name": "beam",
+                "emitter": { "plane_wave": { "direction": [0, 0, -1], "reference_point_m": [0, 0, 0.001] } },
+                "polarization": { "linear": { "reference": [0, 1, 0], "angle_deg": 0 } } } ]
+        },
+        "probe": { "sweep": {
+            "parameter": { "incidence_angle_deg": { "surface_normal": [0, 0, 1], "in_plane_axis": [1, 0, 0] } },
+            "from": 0, "to": 80, "count": 17,
+            "observe": { "far_field": { "side": "transmitted", "surface_normal": [0, 0, 1],
+                                        "exit_medium": "air" } } } },
+        "references": [ { "model": { "plane_wave_beams": { "beams": [
+            { "source": "beam", "events": [ { "surface": "face", "reflect": false } ] } ] } },
+            "tolerances": { "vector": 1e-12 } } ],
+        "fidelities": ["vector"]
+    });
+    let r = run::run_with(&parse(&doc), false).expect("the sweep runs");
+    let m = &r.metrics[0];
+    assert_eq!(m.analytic.len(), 17);
+    let (n1, n2) = (1.5f64, 1.0f64);
+    for (k, (&exact, &traced)) in m
+        .analytic
+        .iter()
+        .zip(&m.traced[&Fidelity::Vector])
+        .enumerate()
+    {
+        let theta = (5.0 * k as f64).to_radians();
+        let sin2 = n1 / n2 * theta.sin();
+        let expected = if sin2 >= 1.0 {
+            0.0
+        } else {
+            let (c1, c2) = (theta.cos(), (1.0 - sin2 * sin2).sqrt());
+            let rs = (n1 * c1 - n2 * c2) / (n1 * c1 + n2 * c2);
+            1.0 - rs * rs
+        };
+        for (what, v) in [("closed form", exact), ("traced", traced)] {
+            assert!(
+                (v - expected).abs() <= 1e-12,
+                "{what} at {}°: {v:e}, expected {expected:e}",
+                5 * k
+            );
+        }
+    }
+    assert_passes("tir_sweep", &r);
+    // A sweep wholly beyond θc is dark by physics, not a misplaced probe: T = 0 everywhere.
+    let mut beyond = doc.clone();
+    beyond["probe"]["sweep"]["from"] = json!(45);
+    let r = run::run_with(&parse(&beyond), false).expect("a dark sweep beyond θc runs");
+    assert!(r.metrics[0].analytic.iter().all(|&v| v == 0.0));
+    assert!(
+        r.metrics[0].traced[&Fidelity::Vector]
+            .iter()
+            .all(|&v| v == 0.0)
+    );
+    assert_passes("tir_sweep beyond θc", &r);
+}
