@@ -20,28 +20,11 @@ import math
 import random
 
 import mpmath as mp
+from mp_geometry import apply, dot, rotation
 
 mp.mp.dps = 50
 rng = random.Random(1129)
 
-
-def rotation(rng):
-    q = [rng.gauss(0, 1) for _ in range(4)]
-    m = math.sqrt(sum(x * x for x in q))
-    w, x, y, z = (v / m for v in q)
-    return [
-        [1 - 2 * (y * y + z * z), 2 * (x * y - z * w), 2 * (x * z + y * w)],
-        [2 * (x * y + z * w), 1 - 2 * (x * x + z * z), 2 * (y * z - x * w)],
-        [2 * (x * z - y * w), 2 * (y * z + x * w), 1 - 2 * (x * x + y * y)],
-    ]
-
-
-def apply(R, v):
-    return [sum(R[i][j] * v[j] for j in range(3)) for i in range(3)]
-
-
-def dot(a, b):
-    return sum(x * y for x, y in zip(a, b))
 
 
 def add(a, b, k=1):
