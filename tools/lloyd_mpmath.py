@@ -17,7 +17,6 @@ mirror plane), in air, water and glass above the mirror, with rarer mirrors (nea
 critical angle), in scenes rotated at random and moved up to 10 m from the origin.
 Run: python3 tools/lloyd_mpmath.py > tests/data/lloyd_mpmath.csv
 """
-import math
 import random
 
 import mpmath as mp
