@@ -627,23 +627,28 @@ fn run_cli() -> ExitCode {
                         );
                         ExitCode::SUCCESS
                     } else {
-                        for r in outcome.rows.iter().filter(|r| r.pass == Some(false)) {
-                            eprintln!(
-                                "  {} {} {}: max|dev| {:e} > {:e}; {}",
-                                r.case,
-                                r.fidelity,
-                                r.metric,
-                                r.max_abs_dev,
-                                r.tolerance.unwrap_or(f64::NAN),
-                                r.note
-                            );
-                        }
+                        print_failed_rows(&outcome.rows);
                         eprintln!("FAILED: {}", outcome.failed_cases.join(", "));
                         ExitCode::from(1)
                     }
                 }
             }
         }
+    }
+}
+
+/// The rows that failed their tolerance, one line each on stderr (`check` and `grade`).
+fn print_failed_rows(rows: &[fringe::report::Row]) {
+    for r in rows.iter().filter(|r| r.pass == Some(false)) {
+        eprintln!(
+            "  {} {} {}: max|dev| {:e} > {:e}; {}",
+            r.case,
+            r.fidelity,
+            r.metric,
+            r.max_abs_dev,
+            r.tolerance.unwrap_or(f64::NAN),
+            r.note
+        );
     }
 }
 
@@ -687,17 +692,7 @@ fn grade_command(
                 eprintln!("{l}");
             }
             if outcome.failed {
-                for r in outcome.rows.iter().filter(|r| r.pass == Some(false)) {
-                    eprintln!(
-                        "  {} {} {}: max|dev| {:e} > {:e}; {}",
-                        r.case,
-                        r.fidelity,
-                        r.metric,
-                        r.max_abs_dev,
-                        r.tolerance.unwrap_or(f64::NAN),
-                        r.note
-                    );
-                }
+                print_failed_rows(&outcome.rows);
                 eprintln!("FAILED: {}", outcome.case);
                 ExitCode::from(1)
             } else {

@@ -101,6 +101,17 @@ fn index(d: &mut Draws, simple: f64) -> f64 {
     }
 }
 
+/// Whether the film or plate lies on a substrate (probability ½, tagged `substrate`) and the
+/// index below it: the substrate's (drawn like [`index`] around 1.33), else `ambient`.
+fn substrate(d: &mut Draws, tags: &mut Vec<&'static str>, ambient: f64) -> (bool, f64) {
+    if d.flag(0.5) {
+        tags.push("substrate");
+        (true, index(d, 1.33))
+    } else {
+        (false, ambient)
+    }
+}
+
 /// The ambient index (air, or any medium), tagged `air` or `medium`.
 fn ambient(d: &mut Draws, tags: &mut Vec<&'static str>) -> f64 {
     let n = index(d, 1.0);
@@ -359,13 +370,7 @@ fn two_beam_plate(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
 fn airy(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let n1 = ambient(d, tags);
     let n2 = index(d, 1.5);
-    let on_substrate = d.flag(0.5);
-    let n3 = if on_substrate {
-        tags.push("substrate");
-        index(d, 1.33)
-    } else {
-        n1
-    };
+    let (on_substrate, n3) = substrate(d, tags, n1);
     let t = thickness_um(d, tags);
     let nm = wavelength_nm(d);
     let transmitted = d.flag(0.5);
@@ -417,13 +422,7 @@ fn airy(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
 fn wedge(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let n0 = ambient(d, tags);
     let n = index(d, 1.5);
-    let on_substrate = d.flag(0.5);
-    let n3 = if on_substrate {
-        tags.push("substrate");
-        index(d, 1.33)
-    } else {
-        n0
-    };
+    let (on_substrate, n3) = substrate(d, tags, n0);
     let nm = wavelength_nm(d);
     let alpha_deg = d.log(1e-5, 10.0);
     let t0_um = d.log(1e-3, 1e4);
@@ -695,13 +694,7 @@ fn incoherent_sum(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
 fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let n1 = ambient(d, tags);
     let n2 = index(d, 1.5);
-    let on_substrate = d.flag(0.5);
-    let n3 = if on_substrate {
-        tags.push("substrate");
-        index(d, 1.33)
-    } else {
-        n1
-    };
+    let (on_substrate, n3) = substrate(d, tags, n1);
     let centre = wavelength_nm(d);
     let fwhm = centre * d.log(1e-4, 0.2);
     let t0_nm = d.log(0.1, 1e8);
