@@ -707,6 +707,61 @@ fn plane_wave_beams(
         .sum())
 }
 
+/// A Michelson scene as its closed form reads it ([`michelson_layout`]).
+struct MichelsonLayout<'a> {
+    /// Index of the splitter.
+    splitter: usize,
+    source: &'a Source,
+    /// The point source's position (m).
+    position: DVec3,
+    /// Per mirror: its index, and whether the splitter reflects its arm first (the mirror lies
+    /// on the source's side of the splitter) rather than transmitting it first.
+    arms: Vec<(usize, bool)>,
+}
+
+/// The layout the Michelson closed form assumes: the splitter's index, the point source, and
+/// for each mirror its index and whether it lies on the source's side of the splitter (its arm
+/// is reflected by the splitter first, else transmitted first). Shared by the closed form
+/// ([`michelson_ref`]) and the sequences it models ([`michelson_sequences`]).
+fn michelson_layout<'a>(
+    built: &'a Built,
+    splitter: &str,
+    mirrors: &[String; 2],
+) -> Result<MichelsonLayout<'a>, String> {
+    let scene = &built.scene;
+    let b = built.surface(splitter)?;
+    let src = scene.sources.first().ok_or("michelson needs a source")?;
+    let Emitter::Point { position: s } = src.emitter else {
+        return Err("michelson needs a point source".into());
+    };
+    let plane = &scene.surfaces[b].plane;
+    let side_src = plane.signed_distance(s).signum();
+    let arms = mirrors
+        .iter()
+        .map(|m| {
+            let mi = built.surface(m)?;
+            if !matches!(scene.surfaces[mi].kind, SurfaceKind::IdealMirror { .. }) {
+                return Err(format!(
+                    "{m:?} must be a mirror (the michelson closed form treats it as a perfect \
+                     conductor), got another kind of surface"
+                ));
+            }
+            let side_m = plane
+                .signed_distance(scene.surfaces[mi].plane.point)
+                .signum();
+            Ok((mi, side_m == side_src))
+        })
+        .collect::<Result<_, String>>()?;
+    Ok(MichelsonLayout {
+        splitter: b,
+        source: src,
+        position: s,
+        arms,
+    })
+}
+
+/// The Michelson closed form at `target` ([`michelson::intensity`]): one virtual source per
+/// arm of [`michelson_layout`], summed over the source's channels.
 fn michelson_ref(
     built: &Built,
     splitter: &str,
@@ -715,51 +770,49 @@ fn michelson_ref(
     lambda_m: f64,
 ) -> Result<f64, String> {
     let scene = &built.scene;
-    let bs = &scene.surfaces[built.surface(splitter)?];
+    let MichelsonLayout {
+        splitter: b,
+        source: src,
+        position: s,
+        arms: layout,
+    } = michelson_layout(built, splitter, mirrors)?;
+    let bs = &scene.surfaces[b];
     let SurfaceKind::Splitter { reflectance, .. } = bs.kind else {
         return Err(format!("{splitter:?} must be a splitter"));
-    };
-    let src = scene.sources.first().ok_or("michelson needs a source")?;
-    let Emitter::Point { position: s } = src.emitter else {
-        return Err("michelson needs a point source".into());
     };
     let p = point(target)?;
     let side_src = bs.plane.signed_distance(s).signum();
     let (r, t) = (reflectance.sqrt(), (1.0 - reflectance).sqrt());
     // E_r = σ R_N(E_i): σ = −√R from the front, +√R from the back.
     let sigma = |side: f64| if side > 0.0 { -r } else { r };
-    let mut arms = Vec::new();
-    for m in mirrors {
-        let mi = &scene.surfaces[built.surface(m)?];
-        if !matches!(mi.kind, SurfaceKind::IdealMirror { .. }) {
-            return Err(format!(
-                "{m:?} must be a mirror (the michelson closed form treats it as a perfect \
-                 conductor), got another kind of surface"
-            ));
-        }
-        let mirror = michelson::Reflection {
-            point: mi.plane.point,
-            normal: mi.plane.normal,
-            factor: -1.0,
-        };
-        let split = |side: f64| michelson::Reflection {
-            point: bs.plane.point,
-            normal: bs.plane.normal,
-            factor: sigma(side),
-        };
-        let side_m = bs.plane.signed_distance(mi.plane.point).signum();
-        arms.push(if side_m == side_src {
+    let arms: Vec<michelson::Arm> = layout
+        .iter()
+        .map(|&(mi, reflected_first)| {
+            let plane = &scene.surfaces[mi].plane;
+            let mirror = michelson::Reflection {
+                point: plane.point,
+                normal: plane.normal,
+                factor: -1.0,
+            };
+            let split = |side: f64| michelson::Reflection {
+                point: bs.plane.point,
+                normal: bs.plane.normal,
+                factor: sigma(side),
+            };
+            let reflections = if reflected_first {
+                vec![split(side_src), mirror]
+            } else {
+                vec![
+                    mirror,
+                    split(bs.plane.signed_distance(plane.point).signum()),
+                ]
+            };
             michelson::Arm {
-                reflections: vec![split(side_src), mirror],
+                reflections,
                 transmission: t,
             }
-        } else {
-            michelson::Arm {
-                reflections: vec![mirror, split(side_m)],
-                transmission: t,
-            }
-        });
-    }
+        })
+        .collect();
     let n = ambient_index(built, lambda_m)?;
     Ok(src
         .channels()
@@ -781,23 +834,16 @@ pub fn michelson_sequences(
     splitter: &str,
     mirrors: &[String; 2],
 ) -> Result<Vec<Vec<Event>>, String> {
-    let scene = &built.scene;
-    let b = built.surface(splitter)?;
-    let src = scene.sources.first().ok_or("michelson needs a source")?;
-    let Emitter::Point { position: s } = src.emitter else {
-        return Err("michelson needs a point source".into());
-    };
-    let plane = &scene.surfaces[b].plane;
-    let side_src = plane.signed_distance(s).signum();
+    let MichelsonLayout {
+        splitter: b,
+        arms: layout,
+        ..
+    } = michelson_layout(built, splitter, mirrors)?;
     let ev = |surface, kind| Event { surface, kind };
-    mirrors
-        .iter()
-        .map(|m| {
-            let mi = built.surface(m)?;
-            let side_m = plane
-                .signed_distance(scene.surfaces[mi].plane.point)
-                .signum();
-            Ok(if side_m == side_src {
+    Ok(layout
+        .into_iter()
+        .map(|(mi, reflected_first)| {
+            if reflected_first {
                 vec![
                     ev(b, EventKind::Reflect),
                     ev(mi, EventKind::Reflect),
@@ -809,9 +855,9 @@ pub fn michelson_sequences(
                     ev(mi, EventKind::Reflect),
                     ev(b, EventKind::Reflect),
                 ]
-            })
+            }
         })
-        .collect()
+        .collect())
 }
 
 /// The coherence references over the whole spectrum: plane wave at normal incidence on a
