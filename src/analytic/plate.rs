@@ -300,14 +300,24 @@ impl TwoBeamPlate {
         let cos_i = f64::from(precise::div(TwoFloat::from(hs), l1));
         let cos_t = f64::from(ct);
         let a = f64::from(a);
-        let f12 = fresnel(n1, n2, cos_i);
-        let f23 = fresnel(n2, n1, cos_t);
-        let f21 = fresnel(n2, n1, cos_t);
+        // The ray leaves the plate into n1 at the angle it entered (Snell's law both ways), so
+        // every face sees the pair (cos θ, cos θt), both known to double-double: the bottom
+        // reflection and the exit take the outside cosine from the entry, not from
+        // cos²θ = 1 − (n2/n1)² sin²θt, which a plate much denser than its ambient turns into
+        // cancellation (n2/n1 = 1000 near grazing: cos θt ≈ 1 − 2e-7 rounded by 1e-16 moved
+        // cos²θ by 6e-7 of itself and I by 1.2e-8, against a 50-digit evaluation;
+        // `tests/suite/truth_plates.rs`).
+        let (ci, ct) = (Complex64::from(cos_i), Complex64::from(cos_t));
+        let amp = |pol| {
+            let (_, t12) = coefficients(n1, ci, n2, ct, pol);
+            let (r23, t21) = coefficients(n2, ct, n1, ci, pol);
+            t12 * r23 * t21
+        };
         let beam = Beam {
             theta: a.atan2(hs),
             optical_path_m: f64::from(op),
-            amp_s: f12.t_s * f23.r_s * f21.t_s,
-            amp_p: f12.t_p * f23.r_p * f21.t_p,
+            amp_s: amp(Pol::S),
+            amp_p: amp(Pol::P),
         };
         (beam, op)
     }

@@ -8,7 +8,7 @@ use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
 use crate::accumulate::Accumulator;
 use crate::fidelity::{self, Fidelity, SceneNeeds};
 use crate::observable::{Observable, Returns, check_match};
-use crate::path::{EnumerationLimits, EventKind, SolveOptions, Target};
+use crate::path::{EnumerationLimits, EventKind, PathError, SolveOptions, Target};
 use crate::source::Emitter;
 use crate::trace::{self, Arrival, TraceSettings};
 use glam::DVec3;
@@ -433,18 +433,34 @@ fn probe_targets(target: &Target) -> Vec<DVec3> {
     }
 }
 
-/// All arrivals at a target that the observer records.
+/// All arrivals at a target that the observer records, or why a path that exists could not be
+/// traced: a sequence whose solver stopped short of the target ([`PathError::NotConverged`]) is
+/// a path the tracer failed to find, not one that does not exist, and dropping it would lose a
+/// beam silently (a two-beam plate lost its second beam so and was 0.25 off,
+/// `tests/suite/truth_plates.rs`); the case is refused with that reason instead.
 fn arrivals_at(
     built: &Built,
     optics: &crate::scene::SceneOptics,
     target: &Target,
     observer: &Observer,
     st: &TraceSettings,
-) -> Vec<Arrival> {
+) -> Result<Vec<Arrival>, String> {
     let plan = trace::plan(&built.scene, optics, &probe_targets(target), &st.limits);
-    let mut arr = trace::arrivals(&built.scene, optics, &plan, target, st).0;
+    let (mut arr, failed) = trace::arrivals(&built.scene, optics, &plan, target, st);
+    if let Some(f) = failed
+        .iter()
+        .find(|f| matches!(f.error, PathError::NotConverged { .. }))
+    {
+        return Err(format!(
+            "the path solver could not land the path {} on a probe point ({}): f64 ray \
+             directions cannot resolve it to 1e-12 of the scene (an extreme index contrast or \
+             grazing incidence; README \"fuzz\")",
+            crate::path::sequence_label(f.sequence.iter()),
+            f.error
+        ));
+    }
     arr.retain(|a| build::records(observer, a.vector.dir));
-    arr
+    Ok(arr)
 }
 
 /// Group-summed field of the arrivals at one level (for retardance).
@@ -564,7 +580,8 @@ pub(super) fn trace_point(
                 arr.iter().map(|a| a.at_wavelength(lambda_m)).collect()
             }
             _ => {
-                let arr = arrivals_at(&built, &optics, &target, &pt.observer, &st);
+                let arr = arrivals_at(&built, &optics, &target, &pt.observer, &st)
+                    .map_err(|e| case_err(case, "$.probe", e))?;
                 last = Some((optics, target, arr.clone()));
                 arr
             }
@@ -770,7 +787,8 @@ fn traced_spacing(case: &Case, built: &Built) -> Result<(f64, f64), CaseError> {
         position_m: p0.to_array(),
         looks_toward: *looks_toward,
     };
-    let mut arr = arrivals_at(built, &optics, &Target::Point(p0), &observer, &st);
+    let mut arr = arrivals_at(built, &optics, &Target::Point(p0), &observer, &st)
+        .map_err(|e| case_err(case, "$.probe", e))?;
     let id = arr.first().map(|x| x.vector.coherence_id);
     arr.retain(|x| Some(x.vector.coherence_id) == id);
     arr.sort_by(|x, y| y.vector.intensity().total_cmp(&x.vector.intensity()));
@@ -1143,7 +1161,8 @@ fn convergence(case: &Case, points: &[ProbePoint]) -> Result<Vec<ConvergenceRow>
                     .map_err(|e| case_err(case, "$.probe", e))?;
                 let traced = factor
                     * trace::intensity(
-                        &arrivals_at(&built, &optics, &target, &pt.observer, &st),
+                        &arrivals_at(&built, &optics, &target, &pt.observer, &st)
+                            .map_err(|e| case_err(case, "$.probe", e))?,
                         Fidelity::Vector,
                     );
                 let exact =
