@@ -433,24 +433,66 @@ fn probe_targets(target: &Target) -> Vec<DVec3> {
     }
 }
 
+/// The paths a case's references model that exist in every scene the reference accepts, so a
+/// solver that does not land one has lost a beam: for `two_beam_plate`, the top reflection and,
+/// over a plate at least as dense as its ambient, the beam through the plate (Snell's invariant
+/// has its root at any lateral distance). Over a plate thinner than its ambient the reference
+/// refuses the scenes beyond the critical angle itself (frustrated total reflection), with its
+/// own reason.
+fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::path::Event>> {
+    use crate::path::Event;
+    use crate::scene::SurfaceKind;
+    let spectrum = build::spectrum(&case.spec.light, &Overrides::default());
+    let lambda_m = spectrum[spectrum.len() / 2].0;
+    let mut out = Vec::new();
+    for r in &case.spec.references {
+        if let ReferenceModel::TwoBeamPlate { plate } = &r.model
+            && let (Ok(top), Ok(bottom)) = (
+                built.surface(&format!("{plate}.top")),
+                built.surface(&format!("{plate}.bottom")),
+            )
+        {
+            let ev = |surface, kind| Event { surface, kind };
+            out.push(vec![ev(top, EventKind::Reflect)]);
+            let SurfaceKind::Interface { front, back, .. } = &built.scene.surfaces[top].kind else {
+                continue;
+            };
+            let (Ok(n_above), Ok(n_plate)) = (front.index(lambda_m), back.index(lambda_m)) else {
+                continue;
+            };
+            if n_plate < n_above {
+                continue;
+            }
+            out.push(vec![
+                ev(top, EventKind::Refract),
+                ev(bottom, EventKind::Reflect),
+                ev(top, EventKind::Refract),
+            ]);
+        }
+    }
+    out
+}
+
 /// All arrivals at a target that the observer records, or why a path that exists could not be
-/// traced: a sequence whose solver stopped short of the target ([`PathError::NotConverged`]) is
-/// a path the tracer failed to find, not one that does not exist, and dropping it would lose a
-/// beam silently (a two-beam plate lost its second beam so and was 0.25 off,
-/// `tests/suite/truth_plates.rs`); the case is refused with that reason instead.
+/// traced: a path of [`required_paths`] whose solver stopped short of the target
+/// ([`PathError::NotConverged`]) is a beam the tracer failed to find, and dropping it would lose
+/// it silently (a two-beam plate lost its second beam so and was 0.25 off,
+/// `tests/suite/truth_plates.rs`); the case is refused with that reason instead. (Other
+/// sequences that do not converge are, as before, taken as paths that do not exist.)
 fn arrivals_at(
     built: &Built,
     optics: &crate::scene::SceneOptics,
     target: &Target,
     observer: &Observer,
     st: &TraceSettings,
+    required: &[Vec<crate::path::Event>],
 ) -> Result<Vec<Arrival>, String> {
     let plan = trace::plan(&built.scene, optics, &probe_targets(target), &st.limits);
     let (mut arr, failed) = trace::arrivals(&built.scene, optics, &plan, target, st);
-    if let Some(f) = failed
-        .iter()
-        .find(|f| matches!(f.error, PathError::NotConverged { .. }))
-    {
+    if let Some(f) = failed.iter().find(|f| {
+        matches!(f.error, PathError::NotConverged { .. })
+            && required.iter().any(|q| f.sequence.iter().eq(q.iter()))
+    }) {
         return Err(format!(
             "the path solver could not land the path {} on a probe point ({}): f64 ray \
              directions cannot resolve it to 1e-12 of the scene (an extreme index contrast or \
@@ -580,8 +622,15 @@ pub(super) fn trace_point(
                 arr.iter().map(|a| a.at_wavelength(lambda_m)).collect()
             }
             _ => {
-                let arr = arrivals_at(&built, &optics, &target, &pt.observer, &st)
-                    .map_err(|e| case_err(case, "$.probe", e))?;
+                let arr = arrivals_at(
+                    &built,
+                    &optics,
+                    &target,
+                    &pt.observer,
+                    &st,
+                    &required_paths(case, &built),
+                )
+                .map_err(|e| case_err(case, "$.probe", e))?;
                 last = Some((optics, target, arr.clone()));
                 arr
             }
@@ -787,8 +836,16 @@ fn traced_spacing(case: &Case, built: &Built) -> Result<(f64, f64), CaseError> {
         position_m: p0.to_array(),
         looks_toward: *looks_toward,
     };
-    let mut arr = arrivals_at(built, &optics, &Target::Point(p0), &observer, &st)
-        .map_err(|e| case_err(case, "$.probe", e))?;
+    let required = required_paths(case, built);
+    let mut arr = arrivals_at(
+        built,
+        &optics,
+        &Target::Point(p0),
+        &observer,
+        &st,
+        &required,
+    )
+    .map_err(|e| case_err(case, "$.probe", e))?;
     let id = arr.first().map(|x| x.vector.coherence_id);
     arr.retain(|x| Some(x.vector.coherence_id) == id);
     arr.sort_by(|x, y| y.vector.intensity().total_cmp(&x.vector.intensity()));
@@ -1161,8 +1218,15 @@ fn convergence(case: &Case, points: &[ProbePoint]) -> Result<Vec<ConvergenceRow>
                     .map_err(|e| case_err(case, "$.probe", e))?;
                 let traced = factor
                     * trace::intensity(
-                        &arrivals_at(&built, &optics, &target, &pt.observer, &st)
-                            .map_err(|e| case_err(case, "$.probe", e))?,
+                        &arrivals_at(
+                            &built,
+                            &optics,
+                            &target,
+                            &pt.observer,
+                            &st,
+                            &required_paths(case, &built),
+                        )
+                        .map_err(|e| case_err(case, "$.probe", e))?,
                         Fidelity::Vector,
                     );
                 let exact =
