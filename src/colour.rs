@@ -62,25 +62,22 @@ impl<const N: usize> Table1nm<N> {
     /// `lambda_nm`; lines starting with '#' are comments. Panics on malformed shipped data
     /// (the data is compiled in, and a test reads every table).
     fn parse(csv: &str, columns: [&str; N]) -> Self {
-        let mut lines = csv
-            .lines()
-            .filter(|l| !l.starts_with('#') && !l.trim().is_empty());
-        let header: Vec<&str> = lines
-            .next()
-            .expect("table has a header")
-            .split(',')
-            .collect();
-        assert_eq!(header[0], "lambda_nm", "first column must be lambda_nm");
+        let mut reader = csv::ReaderBuilder::new()
+            .comment(Some(b'#'))
+            .from_reader(csv.as_bytes());
+        let header = reader.headers().expect("table has a header").clone();
+        assert_eq!(&header[0], "lambda_nm", "first column must be lambda_nm");
         let index = columns.map(|name| {
             header
                 .iter()
-                .position(|h| *h == name)
+                .position(|h| h == name)
                 .unwrap_or_else(|| panic!("table has no column {name}"))
         });
-        let rows: Vec<[f64; N]> = lines
+        let rows: Vec<[f64; N]> = reader
+            .records()
             .enumerate()
-            .map(|(row, line)| {
-                let fields: Vec<&str> = line.split(',').collect();
+            .map(|(row, record)| {
+                let fields = record.expect("table rows are CSV records of one length");
                 let lambda_nm: f64 = fields[0].parse().expect("lambda_nm is a number");
                 assert_eq!(
                     lambda_nm,
@@ -926,29 +923,38 @@ pub fn write_newton_csv(
     illuminant: Illuminant,
     adaptation: Adaptation,
 ) -> Result<String, String> {
-    use std::fmt::Write;
     let rows = newton_sequence(n_film, thicknesses_m, grid, illuminant, adaptation)?;
-    let mut csv = format!(
+    let comment = format!(
         "# fringe::colour::newton_sequence: soap film n_film={n_film} in air, normal incidence, \
-         Airy reflectance; illuminant={}, adaptation={}, CIE 1931 2deg, {} samples {:.3}..{:.3} nm\n\
-         thickness_nm,X,Y,Z,R_lin,G_lin,B_lin,R8,G8,B8\n",
+         Airy reflectance; illuminant={}, adaptation={}, CIE 1931 2deg, {} samples {:.3}..{:.3} nm\n",
         illuminant.name(),
         adaptation.name(),
         grid.len(),
         grid.lambdas_m[0] * NM_PER_M,
         grid.lambdas_m[grid.len() - 1] * NM_PER_M,
     );
-    for row in &rows {
-        let [x, y, z] = row.xyz;
-        let [r, g, b] = row.linear_srgb;
-        let [r8, g8, b8] = row.srgb8;
-        writeln!(
-            csv,
-            "{},{x:.10e},{y:.10e},{z:.10e},{r:.10e},{g:.10e},{b:.10e},{r8},{g8},{b8}",
+    let table = crate::report::csv_text(
+        &[
+            "thickness_nm",
+            "X",
+            "Y",
+            "Z",
+            "R_lin",
+            "G_lin",
+            "B_lin",
+            "R8",
+            "G8",
+            "B8",
+        ],
+        rows.iter().map(|row| {
+            let e = |v: f64| format!("{v:.10e}");
             // Rounded to 1e-6 nm so that 1e-7 m prints as 100, not 100.00000000000001.
-            (row.thickness_m * NM_PER_M * 1e6).round() / 1e6
-        )
-        .expect("writing to a String cannot fail");
-    }
-    Ok(csv)
+            let mut fields = vec![((row.thickness_m * NM_PER_M * 1e6).round() / 1e6).to_string()];
+            fields.extend(row.xyz.map(e));
+            fields.extend(row.linear_srgb.map(e));
+            fields.extend(row.srgb8.map(|c| c.to_string()));
+            fields
+        }),
+    );
+    Ok(comment + &table)
 }

@@ -17,8 +17,20 @@
 use serde::{Deserialize, Serialize};
 use std::fmt;
 
-/// A rung of the ladder.
-#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord, Serialize, Deserialize)]
+/// A rung of the fidelity ladder (docs/PHYSICS.md §4), cheapest first.
+#[derive(
+    Clone,
+    Copy,
+    Debug,
+    PartialEq,
+    Eq,
+    Hash,
+    PartialOrd,
+    Ord,
+    Serialize,
+    Deserialize,
+    schemars::JsonSchema,
+)]
 #[serde(rename_all = "snake_case")]
 pub enum Fidelity {
     /// I = Σ I_j: intensities add, no phase (paper Fig. 5).

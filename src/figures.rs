@@ -370,22 +370,30 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
     let t = Instant::now();
     let colour_error = colour_error_study(opts)?;
     timings.push(("colour-error study".into(), t.elapsed().as_secs_f64()));
-    let mut csv = String::from(
-        "samples,newton_d65_mean_de00,newton_d65_max_de00,newton_e_mean_de00,newton_e_max_de00,plate_mean_de00,plate_max_de00,plate_seconds\n",
+    let csv = crate::report::csv_text(
+        &[
+            "samples",
+            "newton_d65_mean_de00",
+            "newton_d65_max_de00",
+            "newton_e_mean_de00",
+            "newton_e_max_de00",
+            "plate_mean_de00",
+            "plate_max_de00",
+            "plate_seconds",
+        ],
+        colour_error.iter().map(|r| {
+            vec![
+                r.samples.to_string(),
+                format!("{:.6e}", r.newton_d65_mean),
+                format!("{:.6e}", r.newton_d65_max),
+                format!("{:.6e}", r.newton_e_mean),
+                format!("{:.6e}", r.newton_e_max),
+                format!("{:.6e}", r.plate_mean),
+                format!("{:.6e}", r.plate_max),
+                format!("{:.4}", r.plate_seconds),
+            ]
+        }),
     );
-    for r in &colour_error {
-        csv.push_str(&format!(
-            "{},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.6e},{:.4}\n",
-            r.samples,
-            r.newton_d65_mean,
-            r.newton_d65_max,
-            r.newton_e_mean,
-            r.newton_e_max,
-            r.plate_mean,
-            r.plate_max,
-            r.plate_seconds
-        ));
-    }
     write("colour_error.csv", csv.as_bytes())?;
     let series = vec![
         (

@@ -40,18 +40,25 @@ use std::collections::HashMap;
 /// A rectangular screen of pixels: centre, unit axes u (columns) and v (rows), size (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Screen {
+    /// The screen's centre, m.
     pub center: DVec3,
+    /// Unit axis along the columns (left → right).
     pub u: DVec3,
+    /// Unit axis along the rows (bottom → top), ⊥ `u`.
     pub v: DVec3,
+    /// [width along u, height along v], m.
     pub size_m: [f64; 2],
+    /// [columns, rows].
     pub pixels: [usize; 2],
 }
 
 impl Screen {
+    /// The screen's normal u × v.
     pub fn normal(&self) -> DVec3 {
         self.u.cross(self.v)
     }
 
+    /// [width, height] of one pixel, m.
     pub fn pixel_size(&self) -> [f64; 2] {
         [
             self.size_m[0] / self.pixels[0] as f64,
@@ -80,13 +87,21 @@ impl Screen {
 /// How a pixel's value is estimated from the rays that land in it.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 pub enum Estimator {
+    /// Every ray its own wave, summed coherently with its landing phase.
     NaiveRays,
+    /// Family phase = mean phasor of the landing phases.
     LandingPhase,
+    /// Each ray's phase moved to the pixel centre to first order, then averaged.
     TransportedPhase,
-    Supersampled { cells: usize },
+    /// `TransportedPhase` in each of k×k cells of the pixel, averaged in intensity.
+    Supersampled {
+        /// k: cells per pixel side.
+        cells: usize,
+    },
 }
 
 impl Estimator {
+    /// The estimator's name in reports (`supersampled_4x4`, …).
     pub fn name(&self) -> String {
         match self {
             Estimator::NaiveRays => "naive_rays".into(),
@@ -102,9 +117,11 @@ impl Estimator {
 pub struct ForwardSettings {
     /// Rays per source channel (rounded to a square stratification).
     pub rays: usize,
+    /// Seed of the ray fans (a seed gives the same picture on any number of threads).
     pub seed: u64,
     /// Emission cone: unit axis and half-angle (rad).
     pub cone_axis: DVec3,
+    /// Half-angle of the emission cone, rad.
     pub cone_half_angle: f64,
     /// Maximum interactions per ray.
     pub max_depth: usize,
@@ -117,9 +134,11 @@ pub struct ForwardSettings {
 pub struct Landing {
     /// Where on the screen (m from the lower-left corner).
     pub coords: [f64; 2],
+    /// Where it lands, m.
     pub point: DVec3,
     /// Family key: source, coherence id and surface sequence.
     pub family: (usize, u64, Vec<Event>),
+    /// The ray at the screen.
     pub ray: Ray,
     /// Power carried (|E|²·sr of the source, times the Fresnel power factors).
     pub power: f64,

@@ -14,7 +14,9 @@ use glam::DVec3;
 /// from the origin is off by ~1e-13 m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Plane {
+    /// A point of the plane (m), rounded to f64: `anchor + height_m·normal`.
     pub point: DVec3,
+    /// The unit normal; its side is the plane's front.
     pub normal: DVec3,
     /// The point the plane's height is measured from (m).
     pub anchor: DVec3,
@@ -23,6 +25,7 @@ pub struct Plane {
 }
 
 impl Plane {
+    /// The plane through `point` with normal `normal` (normalized here).
     pub fn new(point: DVec3, normal: DVec3) -> Self {
         Plane {
             point,
@@ -143,12 +146,16 @@ impl Plane {
 /// An axis-aligned rectangle in a plane's (u, v) coordinates, centred at `center_uv` (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Rect {
+    /// The centre (u, v), m.
     pub center_uv: [f64; 2],
+    /// Half the width along u, m.
     pub half_width_m: f64,
+    /// Half the height along v, m.
     pub half_height_m: f64,
 }
 
 impl Rect {
+    /// Whether (u, v) (m) is inside or on the boundary.
     pub fn contains(&self, uv: [f64; 2]) -> bool {
         (uv[0] - self.center_uv[0]).abs() <= self.half_width_m
             && (uv[1] - self.center_uv[1]).abs() <= self.half_height_m
@@ -158,11 +165,15 @@ impl Rect {
 /// The extent of a surface within its plane.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Extent {
+    /// The whole plane.
     Unbounded,
     /// A rectangle in the plane's (u, v) axes.
     Rect {
+        /// Unit u axis (in the plane).
         u: DVec3,
+        /// Unit v axis (in the plane, normal × u).
         v: DVec3,
+        /// The rectangle in (u, v).
         rect: Rect,
     },
 }

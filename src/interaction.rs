@@ -26,11 +26,21 @@ pub enum CoefficientModel {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SurfaceOptics {
     /// An interface between two lossless media; `n_front` on the side the normal points to.
-    Dielectric { n_front: f64, n_back: f64 },
+    Dielectric {
+        /// Index on the normal's side.
+        n_front: f64,
+        /// Index behind.
+        n_back: f64,
+    },
     /// A perfectly conducting mirror (reflects from either side, transmits nothing).
     IdealMirror,
     /// An ideal thin beam splitter of power reflectance R in a uniform medium of index `n`.
-    Splitter { reflectance: f64, n: f64 },
+    Splitter {
+        /// Power reflectance R in [0, 1].
+        reflectance: f64,
+        /// Index on both sides.
+        n: f64,
+    },
 }
 
 /// The local description of one ray–surface encounter.
@@ -42,13 +52,16 @@ pub struct InterfaceHit {
     pub point: DVec3,
     /// Unit normal of the surface, pointing to its front side.
     pub normal: DVec3,
+    /// What is on the two sides.
     pub optics: SurfaceOptics,
+    /// What the children keep of the parent's coherence.
     pub coherence: CoherenceRules,
 }
 
 /// The result of an interaction.
 #[derive(Clone, Debug)]
 pub struct Children {
+    /// The reflected ray.
     pub reflected: Ray,
     /// `None` under total internal reflection and for mirrors.
     pub refracted: Option<Ray>,
@@ -56,8 +69,9 @@ pub struct Children {
     pub coefficients: FresnelCoefficients,
     /// |d_i·N|.
     pub cos_theta_i: f64,
-    /// Indices on the incident and the far side.
+    /// Index on the incident side.
     pub n1: f64,
+    /// Index on the far side.
     pub n2: f64,
 }
 
@@ -289,8 +303,11 @@ pub fn interact_along_in_place(
 /// The polarization of a ray: its frame axes X, Y and its Jones vector (see [`Ray`]).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct JonesFrame {
+    /// Unit frame axis X (⊥ the ray).
     pub x: DVec3,
+    /// Unit frame axis Y (so that (X, Y, dir) is right-handed).
     pub y: DVec3,
+    /// The Jones vector (J_x, J_y): the field is J_x X + J_y Y.
     pub jones: [Complex64; 2],
 }
 

@@ -121,6 +121,9 @@ enum Command {
         #[arg(long)]
         cases_dir: Option<PathBuf>,
     },
+    /// The JSON Schema of case files (draft 2020-12), generated from the case types: the text of
+    /// cases/schema.json, on stdout.
+    Schema,
     /// Render a case's picture (grid probe; a line probe becomes a strip): every pixel traced
     /// exactly, monochrome in the case's light or colour in white light (--samples).
     Render {
@@ -374,6 +377,10 @@ fn run_cli() -> ExitCode {
             format,
         ),
         Command::List { cases_dir } => list_command(&cases_dir_or_default(cases_dir)),
+        Command::Schema => {
+            out!("{}", fringe::case::schema::case_schema_text());
+            ExitCode::SUCCESS
+        }
         Command::Models { out } => match fringe::renderer_models::study::write(&out) {
             Ok(table) => {
                 out!("{table}");

@@ -13,21 +13,33 @@ use serde::{Deserialize, Serialize};
 #[serde(rename_all = "snake_case", deny_unknown_fields)]
 pub enum Dispersion {
     /// n independent of wavelength.
-    Constant { n: f64 },
+    Constant {
+        /// The index.
+        n: f64,
+    },
     /// Cauchy: n = a + b/λ² + c/λ⁴ with λ in micrometres; valid in `[min_um, max_um]`.
     Cauchy {
+        /// Constant term.
         a: f64,
+        /// b, µm².
         b_um2: f64,
+        /// c, µm⁴.
         c_um4: f64,
+        /// Shortest valid vacuum wavelength, µm.
         min_um: f64,
+        /// Longest valid vacuum wavelength, µm.
         max_um: f64,
     },
     /// Sellmeier: n² = 1 + Σ B_k λ²/(λ² − C_k) with λ in micrometres (C_k in µm²);
     /// valid in `[min_um, max_um]`.
     Sellmeier {
+        /// B_1..B_3 (dimensionless).
         b: [f64; 3],
+        /// C_1..C_3, µm².
         c_um2: [f64; 3],
+        /// Shortest valid vacuum wavelength, µm.
         min_um: f64,
+        /// Longest valid vacuum wavelength, µm.
         max_um: f64,
     },
 }
@@ -35,18 +47,28 @@ pub enum Dispersion {
 /// Errors of index evaluation.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum IndexError {
+    /// The wavelength is outside the formula's validity range.
     #[error(
         "wavelength {lambda_nm} nm is outside the validity range {min_nm}–{max_nm} nm of the dispersion formula"
     )]
     OutOfRange {
+        /// The vacuum wavelength asked for, nm.
         lambda_nm: f64,
+        /// Shortest valid vacuum wavelength, nm.
         min_nm: f64,
+        /// Longest valid vacuum wavelength, nm.
         max_nm: f64,
     },
+    /// The formula gives an index that is not finite or not > 0 there.
     #[error(
         "the dispersion formula gives a non-physical index {n} at {lambda_nm} nm (must be finite and > 0)"
     )]
-    NonPhysical { n: f64, lambda_nm: f64 },
+    NonPhysical {
+        /// The index the formula gives.
+        n: f64,
+        /// The vacuum wavelength, nm.
+        lambda_nm: f64,
+    },
 }
 
 impl Dispersion {
@@ -114,20 +136,25 @@ impl Dispersion {
 /// A named medium.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Medium {
+    /// The medium's name (as in the case file; for messages).
     pub name: String,
+    /// Its refractive index n(λ0).
     pub dispersion: Dispersion,
 }
 
 impl Medium {
+    /// A medium of constant index `n`.
     pub fn constant(name: &str, n: f64) -> Self {
         Medium {
             name: name.to_string(),
             dispersion: Dispersion::Constant { n },
         }
     }
+    /// Vacuum, n = 1.
     pub fn vacuum() -> Self {
         Self::constant("vacuum", 1.0)
     }
+    /// The refractive index at vacuum wavelength `lambda_m` (metres), or why there is none.
     pub fn index(&self, lambda_m: f64) -> Result<f64, IndexError> {
         self.dispersion.index(lambda_m)
     }
@@ -138,7 +165,9 @@ impl Medium {
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct CoherenceRules {
+    /// The reflected child keeps the parent's coherence id.
     pub reflected_keeps: bool,
+    /// The refracted child keeps the parent's coherence id.
     pub refracted_keeps: bool,
 }
 

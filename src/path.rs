@@ -32,14 +32,18 @@ use glam::DVec3;
 /// Reflect or refract.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum EventKind {
+    /// Reflected at the surface.
     Reflect,
+    /// Refracted (transmitted) through it.
     Refract,
 }
 
 /// One surface event of a sequence.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub struct Event {
+    /// The surface's index in the scene.
     pub surface: usize,
+    /// Reflect or refract.
     pub kind: EventKind,
 }
 
@@ -68,33 +72,71 @@ pub enum Target {
     Point(DVec3),
     /// A far-field direction (unit); the phase is referred to the wavefront plane through
     /// `reference` perpendicular to the direction (equal optical path to the lens focus).
-    Direction { dir: DVec3, reference: DVec3 },
+    Direction {
+        /// Unit direction of the far field.
+        dir: DVec3,
+        /// A point of the reference wavefront, m.
+        reference: DVec3,
+    },
 }
 
 /// Why a path does not exist.
 #[derive(Clone, Debug, PartialEq, thiserror::Error)]
 pub enum PathError {
+    /// Total internal reflection where the sequence refracts.
     #[error("total internal reflection at a refraction event (event {event})")]
-    TotalInternalReflection { event: usize },
+    TotalInternalReflection {
+        /// The event's position in the sequence.
+        event: usize,
+    },
+    /// The ray never meets the event's plane.
     #[error("the ray misses the plane of event {event}")]
-    Missed { event: usize },
+    Missed {
+        /// The event's position in the sequence.
+        event: usize,
+    },
+    /// The event point is outside the surface's extent.
     #[error("event {event} lies outside the extent of surface {surface}")]
-    OutOfExtent { event: usize, surface: usize },
+    OutOfExtent {
+        /// The event's position in the sequence.
+        event: usize,
+        /// The surface's index in the scene.
+        surface: usize,
+    },
+    /// The ray reaches the event from the wrong side's medium.
     #[error("the ray arrives at event {event} from a medium it is not in")]
-    MediumMismatch { event: usize },
+    MediumMismatch {
+        /// The event's position in the sequence.
+        event: usize,
+    },
+    /// Another surface stops a segment.
     #[error("segment {segment} is blocked by surface {surface}")]
-    Blocked { segment: usize, surface: usize },
+    Blocked {
+        /// The segment's position in the path (0: from the launch point).
+        segment: usize,
+        /// The blocking surface's index in the scene.
+        surface: usize,
+    },
+    /// The end point is behind the last segment's start.
     #[error("the end point lies behind the last segment")]
     Behind,
+    /// The exit direction is not the far-field direction asked for.
     #[error("the exit direction does not match the far-field direction")]
     DirectionMismatch,
+    /// The solver did not land on the target within the tolerance.
     #[error("no convergence: landing error {landing_error_m:e} m after {iterations} iterations")]
     NotConverged {
+        /// The last landing error, m.
         landing_error_m: f64,
+        /// Iterations spent.
         iterations: usize,
     },
+    /// An opaque surface named as an event.
     #[error("surface {surface} is opaque and cannot be an event")]
-    OpaqueEvent { surface: usize },
+    OpaqueEvent {
+        /// The surface's index in the scene.
+        surface: usize,
+    },
 }
 
 /// Solver settings.
@@ -102,6 +144,7 @@ pub enum PathError {
 pub struct SolveOptions {
     /// Accepted landing error relative to the scene scale (default 1e-12).
     pub landing_tolerance: f64,
+    /// Newton iterations before giving up ([`PathError::NotConverged`]).
     pub max_iterations: usize,
     /// Compute the geometric spreading factor.
     pub spreading: bool,
@@ -123,6 +166,7 @@ impl Default for SolveOptions {
 /// plane wave into the far field share their common beginning (`trace`'s far-field walk).
 #[derive(Clone, Debug, PartialEq)]
 pub struct SolvedPath {
+    /// The surface events, in order from the source.
     pub sequence: Trail<Event>,
     /// Launch point, every event point, and the end point (for the far field: the last event
     /// point, or the launch point for a direct path).
@@ -144,6 +188,7 @@ pub struct SolvedPath {
     /// Distance between the landing point and the target (m); for the far field the sine of the
     /// angle between the exit and target directions.
     pub landing_error: f64,
+    /// Solver iterations spent.
     pub iterations: usize,
     /// Number of reflections from the optically denser side (n1 < n2, or a mirror): the π
     /// jumps of `scalar_jump` (docs/PHYSICS.md §4).

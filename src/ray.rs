@@ -24,24 +24,39 @@ pub const INCOHERENT: u64 = 0;
 #[derive(Clone, Debug, PartialEq)]
 pub enum LedgerEntry {
     /// Propagation over `length_m` metres in a medium of index `index`: phase 2π n L/λ0.
-    Path { index: f64, length_m: f64 },
+    Path {
+        /// Refractive index of the medium.
+        index: f64,
+        /// Geometric length, m.
+        length_m: f64,
+    },
     /// A reflection at `surface` with the applied coefficients r_s, r_p (their arguments are
     /// the phase jumps) and whether it was TIR.
     Reflection {
+        /// The surface's index in the scene.
         surface: usize,
+        /// Applied s coefficient.
         r_s: Complex64,
+        /// Applied p coefficient.
         r_p: Complex64,
+        /// Whether it was total internal reflection.
         tir: bool,
     },
     /// A refraction at `surface` with the applied coefficients t_s, t_p (real and positive for
     /// lossless media: no phase).
     Refraction {
+        /// The surface's index in the scene.
         surface: usize,
+        /// Applied s coefficient.
         t_s: Complex64,
+        /// Applied p coefficient.
         t_p: Complex64,
     },
     /// A coherence change at `surface` (the child lost coherence, or the coherence length rule).
-    CoherenceLost { surface: Option<usize> },
+    CoherenceLost {
+        /// The surface's index in the scene (`None`: the coherence length rule).
+        surface: Option<usize>,
+    },
 }
 
 /// The per-ray phase ledger: every contribution to the phase in the order it happened. The
@@ -49,6 +64,7 @@ pub enum LedgerEntry {
 /// ([`Trail`]).
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct PhaseLedger {
+    /// The entries, oldest first.
     pub entries: Trail<LedgerEntry>,
 }
 

@@ -50,8 +50,9 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 use std::time::Instant;
 
-/// Largest picture side and pixel count `render` accepts.
+/// Largest picture side `render` accepts (pixels).
 pub const MAX_SIDE: usize = 8192;
+/// Largest pixel count `render` accepts.
 pub const MAX_PIXELS: usize = 16 * 1024 * 1024;
 
 /// How the arrivals at a pixel are turned into an intensity.
@@ -95,6 +96,7 @@ pub enum Spectrum {
 /// The screen points of a picture.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Screen {
+    /// The pixel grid (centre, axes, size, pixel counts).
     pub geometry: GridGeometry,
     /// One-sided screen (see [`Observer::Point`]).
     pub looks_toward: Option<DVec3>,
@@ -180,9 +182,13 @@ impl Screen {
 /// One rendered picture (row-major, row 0 at the top).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Image {
+    /// How its arrivals became intensities.
     pub shading: Shading,
+    /// Columns.
     pub width: usize,
+    /// Rows.
     pub height: usize,
+    /// The pixel values.
     pub values: ImageValues,
 }
 
@@ -215,8 +221,11 @@ pub struct Render {
 /// A render request.
 #[derive(Clone, Debug)]
 pub struct Request {
+    /// Where the pixels are.
     pub screen: Screen,
+    /// One image per shading, in this order.
     pub shadings: Vec<Shading>,
+    /// The light: the case's own, or white light.
     pub spectrum: Spectrum,
     /// Show a progress bar on stderr (only when stderr is a terminal).
     pub progress: bool,
@@ -617,13 +626,17 @@ pub fn resolve_case(name: &str, cases_dir: &std::path::Path) -> Result<std::path
 /// What `fringe render` was asked.
 #[derive(Clone, Debug)]
 pub struct Command {
+    /// The case file.
     pub case: std::path::PathBuf,
+    /// The shadings to render.
     pub shadings: Vec<Shading>,
     /// White light (grid, illuminant); `None`: the case's own light.
     pub white: Option<(crate::colour::WavelengthGrid, crate::colour::Illuminant)>,
+    /// Picture size (columns, rows); `None`: the probe's pixels.
     pub size: Option<(usize, usize)>,
     /// Output PNG; with several shadings `_<name>` is inserted before the extension.
     pub output: Option<std::path::PathBuf>,
+    /// Show a progress bar on stderr (only when stderr is a terminal).
     pub progress: bool,
 }
 

@@ -16,28 +16,44 @@ use glam::DVec3;
 pub enum SurfaceKind {
     /// A dielectric interface (Fresnel reflection and refraction).
     Interface {
+        /// The medium on the side the normal points to.
         front: Medium,
+        /// The medium behind.
         back: Medium,
+        /// What the children keep of the parent's coherence.
         coherence: CoherenceRules,
     },
     /// A perfectly conducting mirror (both sides).
-    IdealMirror { coherence: CoherenceRules },
+    IdealMirror {
+        /// What the reflected child keeps of the parent's coherence.
+        coherence: CoherenceRules,
+    },
     /// An ideal thin beam splitter (power reflectance R) inside `medium`.
     Splitter {
+        /// Power reflectance R in [0, 1]; the transmittance is 1 − R.
         reflectance: f64,
+        /// The medium on both sides.
         medium: Medium,
+        /// What the children keep of the parent's coherence.
         coherence: CoherenceRules,
     },
     /// Opaque everywhere on its extent except inside the rectangular `apertures` (u, v coords).
-    Opaque { apertures: Vec<Rect> },
+    Opaque {
+        /// The holes, in the plane's (u, v) coordinates.
+        apertures: Vec<Rect>,
+    },
 }
 
 /// A planar surface.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Surface {
+    /// The surface's name (a plate `p` has faces `p.top` and `p.bottom`).
     pub name: String,
+    /// Its plane (point and unit normal, m).
     pub plane: Plane,
+    /// Where on the plane it exists.
     pub extent: Extent,
+    /// What it does to light.
     pub kind: SurfaceKind,
 }
 
@@ -122,6 +138,7 @@ impl Surface {
         })
     }
 
+    /// The coherence rules of the rays it creates (the default rules for an opaque surface).
     pub fn coherence(&self) -> CoherenceRules {
         match &self.kind {
             SurfaceKind::Interface { coherence, .. }
@@ -135,20 +152,27 @@ impl Surface {
 /// A scene: an ambient medium, planar surfaces and sources.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Scene {
+    /// The medium around the sources.
     pub ambient: Medium,
+    /// The surfaces; a ray event names a surface by its index here.
     pub surfaces: Vec<Surface>,
+    /// The sources.
     pub sources: Vec<Source>,
 }
 
 /// Indices of every surface at one wavelength (`None` for opaque ones) plus the ambient index.
 #[derive(Clone, Debug, PartialEq)]
 pub struct SceneOptics {
+    /// The vacuum wavelength, m.
     pub lambda_m: f64,
+    /// The ambient medium's index there.
     pub ambient_index: f64,
+    /// Each surface's optics there, in the order of [`Scene::surfaces`].
     pub surfaces: Vec<Option<SurfaceOptics>>,
 }
 
 impl Scene {
+    /// An empty scene in `ambient`.
     pub fn new(ambient: Medium) -> Self {
         Scene {
             ambient,

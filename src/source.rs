@@ -14,15 +14,25 @@ use glam::DVec3;
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Emitter {
     /// A point at `position` (m), emitting spherical waves.
-    Point { position: DVec3 },
+    Point {
+        /// Where it is, m.
+        position: DVec3,
+    },
     /// A line through `point` along unit `axis`, emitting cylindrical waves perpendicular to its
     /// axis (the stationary-phase ray of a coherent slit). Exact when the scene's planes
     /// contain the axis direction.
-    Line { point: DVec3, axis: DVec3 },
+    Line {
+        /// A point of the line, m.
+        point: DVec3,
+        /// The line's unit direction.
+        axis: DVec3,
+    },
     /// A plane wave travelling along unit `direction`, with phase 0 on the plane through
     /// `reference_point` perpendicular to it.
     PlaneWave {
+        /// Unit direction of travel.
         direction: DVec3,
+        /// A point of the zero-phase wavefront, m.
         reference_point: DVec3,
     },
 }
@@ -32,7 +42,12 @@ pub enum Emitter {
 pub enum Polarization {
     /// Linear: the field is `reference` projected perpendicular to the ray, then rotated by
     /// `angle_rad` about the ray direction (right-handed).
-    Linear { reference: DVec3, angle_rad: f64 },
+    Linear {
+        /// The field direction before projection (any non-zero length).
+        reference: DVec3,
+        /// Rotation about the ray, radians.
+        angle_rad: f64,
+    },
     /// Unpolarized, basis-free (the default): three incoherent dipole channels along x, y, z,
     /// each of weight 1/2; a ray along unit k carries the field (a − (a·k)k)·√(I/2) of dipole
     /// axis a. Σ_a over the three gives the correlation (I − k1k1ᵀ)(I − k2k2ᵀ)/2 of an
@@ -42,7 +57,10 @@ pub enum Polarization {
     /// The paper's unpolarized model (§3.4): two channels, angle 0 and π/2 from `reference`,
     /// half intensity each. Its intensities depend on `reference` off the plane of incidence;
     /// kept to measure that error.
-    UnpolarizedTwoChannel { reference: DVec3 },
+    UnpolarizedTwoChannel {
+        /// The 0° channel's field direction before projection.
+        reference: DVec3,
+    },
 }
 
 /// The channels of one source: at most this many (the basis-free unpolarized model's three
@@ -54,17 +72,28 @@ pub const CHANNELS_PER_GROUP: u64 = 3;
 pub enum ChannelField {
     /// Unit field: `reference` projected perpendicular to the ray, rotated by `angle_rad` about
     /// it (right-handed), see [`Polarization::Linear`].
-    Linear { reference: DVec3, angle_rad: f64 },
+    Linear {
+        /// The field direction before projection.
+        reference: DVec3,
+        /// Rotation about the ray, radians.
+        angle_rad: f64,
+    },
     /// A dipole along unit `axis`: field `axis − (axis·k)k` for a ray along unit k, of length
     /// sin(angle between axis and k) ≤ 1 (zero along the axis).
-    Dipole { axis: DVec3 },
+    Dipole {
+        /// The dipole's unit axis.
+        axis: DVec3,
+    },
 }
 
 /// A source.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Source {
+    /// The source's name (for messages and reports).
     pub name: String,
+    /// Where and how it emits.
     pub emitter: Emitter,
+    /// Its polarization.
     pub polarization: Polarization,
     /// |E|² of the emitted light (of all channels together): at unit distance for point and
     /// line sources with geometric spreading on, and everywhere when spreading is off.

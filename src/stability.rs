@@ -76,7 +76,6 @@ use glam::DVec3;
 use num_complex::Complex64;
 use serde::{Deserialize, Serialize};
 use std::f64::consts::{FRAC_PI_2, TAU};
-use std::fmt::Write as _;
 
 /// Vacuum wavelength of the whole sweep (m).
 pub const WAVELENGTH_M: f64 = 550e-9;
@@ -1190,15 +1189,6 @@ pub fn sweep_with(arithmetic: PathArithmetic) -> Sweep {
 pub const CSV_HEADER: &str =
     "group,condition,quantity,traced,closed_form,deviation,deviation_kind,tolerance,verdict";
 
-/// A CSV field: quoted when it holds a comma, a quote or a line break.
-fn field(s: &str) -> String {
-    if s.contains([',', '"', '\n', '\r']) {
-        format!("\"{}\"", s.replace('"', "\"\""))
-    } else {
-        s.to_string()
-    }
-}
-
 /// Verdict text of a row: pass, FAIL or info.
 pub fn verdict(pass: Option<bool>) -> &'static str {
     match pass {
@@ -1211,24 +1201,23 @@ pub fn verdict(pass: Option<bool>) -> &'static str {
 /// `stability.csv`: one line per row, values to 17 significant digits, an empty tolerance for
 /// illustration rows.
 pub fn csv(rows: &[StabilityRow]) -> String {
-    let mut s = String::from(CSV_HEADER);
-    s.push('\n');
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{},{:.16e},{:.16e},{:.6e},{},{},{}",
-            field(&r.group),
-            field(&r.condition),
-            field(&r.quantity),
-            r.traced,
-            r.closed_form,
-            r.deviation,
-            r.deviation_kind.name(),
-            r.tolerance.map(|t| format!("{t:e}")).unwrap_or_default(),
-            verdict(r.pass)
-        );
-    }
-    s
+    // Written by the `csv` crate (a field with a comma, a quote or a line break is quoted).
+    crate::report::csv_text(
+        &CSV_HEADER.split(',').collect::<Vec<_>>(),
+        rows.iter().map(|r| {
+            vec![
+                r.group.clone(),
+                r.condition.clone(),
+                r.quantity.clone(),
+                format!("{:.16e}", r.traced),
+                format!("{:.16e}", r.closed_form),
+                format!("{:.6e}", r.deviation),
+                r.deviation_kind.name().to_string(),
+                r.tolerance.map(|t| format!("{t:e}")).unwrap_or_default(),
+                verdict(r.pass).to_string(),
+            ]
+        }),
+    )
 }
 
 #[cfg(test)]

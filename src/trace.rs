@@ -30,7 +30,9 @@ use std::sync::Arc;
 /// Tracing settings.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TraceSettings {
+    /// Which surface sequences are enumerated (events, internal reflections).
     pub limits: EnumerationLimits,
+    /// How each path is solved.
     pub solve: SolveOptions,
     /// Trace the sequences of a plane wave into the far field that share a beginning once
     /// ([`path::FarFieldPaths`]: O(m) for a plate's m internal reflections). `false` traces
@@ -104,7 +106,9 @@ pub fn plan(
 /// One ray arriving at a target, with its exact path and its state under both polarized models.
 #[derive(Clone, Debug)]
 pub struct Arrival {
+    /// The source's index in the scene.
     pub source: usize,
+    /// The source's polarization channel the ray carries.
     pub channel: Channel,
     /// The solved path (shared by the source's channels along it).
     pub path: Arc<SolvedPath>,
@@ -133,8 +137,11 @@ impl Arrival {
 /// A sequence that did not give a path, and why (for reports).
 #[derive(Clone, Debug, PartialEq)]
 pub struct Failure {
+    /// The source's index in the scene.
     pub source: usize,
+    /// The surface sequence that was tried.
     pub sequence: Trail<Event>,
+    /// Why it gave no path.
     pub error: PathError,
 }
 

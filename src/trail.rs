@@ -106,6 +106,7 @@ impl<T> Trail<T> {
         matches!(self.0, Repr::Shared { .. })
     }
 
+    /// The number of elements.
     #[inline]
     pub fn len(&self) -> usize {
         match &self.0 {
@@ -114,6 +115,7 @@ impl<T> Trail<T> {
         }
     }
 
+    /// Whether there are none.
     #[inline]
     pub fn is_empty(&self) -> bool {
         self.len() == 0
@@ -231,6 +233,7 @@ impl<T> std::ops::Index<usize> for Trail<T> {
 
 /// The iterator of [`Trail::iter`].
 pub enum Iter<'a, T> {
+    /// Over an owned trail's elements.
     Slice(std::slice::Iter<'a, T>),
     /// Node elements collected last-first, handed out from the end of the `Vec`.
     Nodes(Vec<&'a T>),

@@ -22,11 +22,17 @@ use twofloat::TwoFloat;
 /// the mirror (it is s polarization at every reflection).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Lloyd {
+    /// Index on the source's side.
     pub n1: f64,
+    /// Index of the mirror's bulk.
     pub n2: f64,
+    /// A point of the line source, m.
     pub source: DVec3,
+    /// The line source's direction (parallel to the mirror).
     pub axis: DVec3,
+    /// A point of the mirror plane, m.
     pub mirror_point: DVec3,
+    /// The mirror's normal (either orientation, any length).
     pub normal: DVec3,
 }
 

@@ -13,15 +13,20 @@ use twofloat::TwoFloat;
 /// One reflection of an arm: the plane and the signed amplitude factor σ in E_r = σ·R_N(E_i).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Reflection {
+    /// A point of the reflecting plane, m.
     pub point: DVec3,
+    /// Its normal.
     pub normal: DVec3,
+    /// The signed amplitude factor σ.
     pub factor: f64,
 }
 
 /// An arm: reflections in order and the product of transmission amplitudes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct Arm {
+    /// The reflections, in order from the source.
     pub reflections: Vec<Reflection>,
+    /// The product of the arm's transmission amplitudes.
     pub transmission: f64,
 }
 

@@ -10,7 +10,9 @@ use twofloat::TwoFloat;
 /// s or p.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum Pol {
+    /// s: the field ⊥ the plane of incidence.
     S,
+    /// p: the field in the plane of incidence.
     P,
 }
 
@@ -46,29 +48,41 @@ fn coefficients(
 /// A three-medium stack n1 | n2 (thickness d) | n3 lit from n1 at angle θ1.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Film {
+    /// Index of the incidence medium.
     pub n1: f64,
+    /// Index of the film.
     pub n2: f64,
+    /// Index of the exit medium.
     pub n3: f64,
+    /// Film thickness d, m.
     pub thickness_m: f64,
 }
 
 /// The quantities of the Airy sum at one angle, wavelength and polarization.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AiryTerms {
+    /// Reflection amplitude at face 1 from medium 1 (docs/PHYSICS.md §1 convention).
     pub r12: Complex64,
+    /// Transmission amplitude through face 1 into the film.
     pub t12: Complex64,
+    /// Reflection amplitude at face 1 from inside the film.
     pub r21: Complex64,
+    /// Transmission amplitude through face 1 out of the film.
     pub t21: Complex64,
+    /// Reflection amplitude at face 2 from inside the film.
     pub r23: Complex64,
+    /// Transmission amplitude through face 2 into medium 3.
     pub t23: Complex64,
     /// Round-trip phase β = (4π/λ) n2 d cos θ2.
     pub beta: f64,
     /// cos θ1 and cos θ3 (for the power ratio of transmission).
     pub cos1: f64,
+    /// cos θ3.
     pub cos3: f64,
     /// e^{iβ} and e^{iβ/2}, from β/2π = 2 n2 d cos θ2/λ formed in double-double and reduced to
     /// a fraction of a cycle before rounding (the f64 `beta` of a 1 mm plate carries ~1e-12 rad).
     pub round_trip: Complex64,
+    /// e^{iβ/2}.
     pub half_trip: Complex64,
 }
 
@@ -217,10 +231,15 @@ impl Film {
 /// thickness `d`, indices n1 (ambient, also below) and n2.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct TwoBeamPlate {
+    /// Ambient index (above and below the plate).
     pub n1: f64,
+    /// Plate index.
     pub n2: f64,
+    /// Plate thickness d, m.
     pub thickness_m: f64,
+    /// Source height above the top face, m.
     pub h_src_m: f64,
+    /// Observation point height above the top face, m.
     pub h_obs_m: f64,
 }
 
@@ -231,8 +250,9 @@ pub struct Beam {
     pub theta: f64,
     /// Optical path (m).
     pub optical_path_m: f64,
-    /// Amplitude factors for s and p (product of Fresnel coefficients).
+    /// Amplitude factor for s (product of Fresnel coefficients).
     pub amp_s: Complex64,
+    /// Amplitude factor for p.
     pub amp_p: Complex64,
 }
 

@@ -58,10 +58,15 @@ pub fn prism_amplitudes(
 /// orientation), the indices before and after it, and whether the wave reflects there.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Face {
+    /// A point of the face, m.
     pub point: glam::DVec3,
+    /// Its normal (any length, either orientation).
     pub normal: glam::DVec3,
+    /// Index on the side the wave comes from.
     pub n_before: f64,
+    /// Index on the other side.
     pub n_after: f64,
+    /// Whether the wave reflects there (else it refracts).
     pub reflect: bool,
 }
 

@@ -34,12 +34,19 @@ pub fn fringe_spacing_small_angle(lambda_m: f64, n: f64, alpha_rad: f64) -> f64 
 /// lost ~1e-8 in rotated and translated scenes: `tests/suite/closed_form_precision.rs`).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Wedge {
+    /// Index above the wedge (incidence side).
     pub n1: f64,
+    /// The wedge's index.
     pub n: f64,
+    /// Index below the wedge.
     pub n3: f64,
+    /// A point of the top face, m.
     pub top_point: DVec3,
+    /// The top face's normal.
     pub top_normal: DVec3,
+    /// A point of the bottom face, m.
     pub bottom_point: DVec3,
+    /// The bottom face's normal.
     pub bottom_normal: DVec3,
 }
 

@@ -19,6 +19,7 @@ fn v(a: &Vec3) -> DVec3 {
 pub struct Overrides {
     /// Plane-wave direction sin θ·axis − cos θ·normal: (θ, normal, axis).
     pub incidence: Option<(f64, DVec3, DVec3)>,
+    /// The vacuum wavelength, m (monochrome light).
     pub wavelength_m: Option<f64>,
     /// (plate or wedge name, thickness in metres).
     pub thickness: Option<(String, f64)>,
@@ -28,8 +29,11 @@ pub struct Overrides {
 /// wedge `p` becomes `p.top` and `p.bottom`; the bare name maps to both).
 #[derive(Clone, Debug)]
 pub struct Built {
+    /// The scene.
     pub scene: Scene,
+    /// Case surface name → scene surface indices (two for a plate or wedge).
     pub surfaces: BTreeMap<String, Vec<usize>>,
+    /// The case's media by name.
     pub media: BTreeMap<String, Medium>,
 }
 
@@ -45,6 +49,7 @@ impl Built {
         }
     }
 
+    /// The medium the case names `name`.
     pub fn medium(&self, name: &str) -> Result<&Medium, String> {
         self.media
             .get(name)
@@ -52,6 +57,7 @@ impl Built {
     }
 }
 
+/// The medium of a case file's medium entry `m` called `name`.
 pub fn medium(name: &str, m: &MediumSpec) -> Medium {
     let dispersion = match m {
         MediumSpec::Constant { n } => Dispersion::Constant { n: *n },
@@ -400,8 +406,11 @@ pub fn spectrum(light: &Light, ov: &Overrides) -> Vec<(f64, f64)> {
 /// One probe point: its coordinate, the overrides of a sweep, and what it observes.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ProbePoint {
+    /// The point's coordinate in the profile (the probe's unit).
     pub coordinate: f64,
+    /// What the sweep value changes in the scene.
     pub overrides: Overrides,
+    /// Where it observes.
     pub observer: Observer,
 }
 
@@ -503,7 +512,9 @@ pub struct GridGeometry {
     pub step_col: DVec3,
     /// From one row to the next, downwards (m).
     pub step_row: DVec3,
+    /// Pixel columns.
     pub columns: usize,
+    /// Pixel rows.
     pub rows: usize,
 }
 

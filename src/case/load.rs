@@ -48,8 +48,11 @@ pub mod limits {
 /// A case-file error: file, JSON path, message.
 #[derive(Clone, Debug, PartialEq)]
 pub struct CaseError {
+    /// The case file.
     pub file: PathBuf,
+    /// Where in it (`$.scene.surfaces[2].plate.thickness_um`).
     pub json_path: String,
+    /// What is wrong and what is allowed.
     pub message: String,
 }
 
@@ -70,7 +73,9 @@ impl std::error::Error for CaseError {}
 /// A validated case.
 #[derive(Clone, Debug)]
 pub struct Case {
+    /// The file it was read from.
     pub file: PathBuf,
+    /// Its contents.
     pub spec: CaseFile,
 }
 

@@ -5,4 +5,5 @@ pub mod detection;
 pub mod load;
 pub mod reference;
 pub mod run;
+pub mod schema;
 pub mod spec;

@@ -28,6 +28,7 @@ pub enum MetricKind {
     Visibility,
 }
 
+/// What a reference model's values are (intensity, fringe spacing, retardance, visibility).
 pub fn kind(model: &ReferenceModel) -> MetricKind {
     match model {
         ReferenceModel::YoungSpacing { .. } | ReferenceModel::WedgeSpacing { .. } => {
@@ -823,7 +824,7 @@ fn michelson_ref(
         .sum())
 }
 
-/// The surface sequences the Michelson closed form models ([`michelson_ref`]): for each mirror,
+/// The surface sequences the Michelson closed form models (`michelson_ref`): for each mirror,
 /// splitter (reflect) → mirror → splitter (transmit) when the mirror is on the source's side of
 /// the splitter, else splitter (transmit) → mirror → splitter (reflect). Light that reaches the
 /// probe along any other sequence (a mirror large enough to be lit directly, a second pass

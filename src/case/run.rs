@@ -22,21 +22,30 @@ use std::time::Instant;
 pub struct MetricResult {
     /// Index of the reference in the case file.
     pub index: usize,
+    /// The metric's name (the reference's label, else its model's key).
     pub name: String,
+    /// The closed form.
     pub model: ReferenceModel,
+    /// What the values are.
     pub kind: MetricKind,
+    /// The probe coordinate of each value.
     pub coordinates: Vec<f64>,
+    /// The closed form's value at each coordinate.
     pub analytic: Vec<f64>,
     /// Traced values per fidelity level (levels where the metric is undefined are absent).
     pub traced: BTreeMap<Fidelity, Vec<f64>>,
+    /// Relative tolerance per level (levels without one are information only).
     pub tolerances: BTreeMap<Fidelity, f64>,
+    /// Why a tolerance looser than 1e-9 is physically forced.
     pub tolerance_note: Option<String>,
 }
 
 /// Deviation statistics of one level against one reference.
 #[derive(Clone, Debug, PartialEq)]
 pub struct LevelStats {
+    /// Largest deviation ([`MetricResult::deviations`]).
     pub max_abs_dev: f64,
+    /// Root-mean-square deviation.
     pub rms_dev: f64,
     /// Where the largest deviation occurs (probe coordinate).
     pub at: f64,
@@ -82,6 +91,7 @@ impl MetricResult {
         }
     }
 
+    /// The deviation statistics of `level` (`None` where the metric is undefined there).
     pub fn stats(&self, level: Fidelity) -> Option<LevelStats> {
         let d = self.deviations(level)?;
         let (mut max, mut at) = (0.0f64, self.coordinates.first().copied().unwrap_or(0.0));
@@ -103,8 +113,11 @@ impl MetricResult {
 /// Error of the traced Airy sum against the closed form for a given number of reflected orders.
 #[derive(Clone, Debug, PartialEq)]
 pub struct ConvergenceRow {
+    /// Reflected orders summed.
     pub orders: usize,
+    /// Internal reflections traced.
     pub internal_reflections: usize,
+    /// Largest relative deviation from the closed form over the probe.
     pub max_abs_dev: f64,
     /// The geometric-tail bound on |R_N − R| (2|r|τ + τ², τ the amplitude tail bound), maximised
     /// over the probe.
@@ -114,14 +127,23 @@ pub struct ConvergenceRow {
 /// Everything a case run produced.
 #[derive(Clone, Debug)]
 pub struct CaseResult {
+    /// The case's name.
     pub name: String,
+    /// What it shows.
     pub description: String,
+    /// The formula its reference evaluates.
     pub formula: String,
+    /// The fidelity levels run.
     pub levels: Vec<Fidelity>,
+    /// One per reference.
     pub metrics: Vec<MetricResult>,
+    /// The cheapest exact level for the scene, and why.
     pub auto: fidelity::AutoChoice,
+    /// Wall time of the exact tracing, s.
     pub trace_seconds: f64,
+    /// Wall time of each level's accumulation, s.
     pub level_seconds: BTreeMap<Fidelity, f64>,
+    /// Airy cases: the error against the number of reflected orders.
     pub convergence: Vec<ConvergenceRow>,
     /// Internal reflections used per probe point (max over points).
     pub internal_reflections: usize,

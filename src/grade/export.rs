@@ -17,7 +17,6 @@ use crate::check::{self, CheckOptions, Format, InputError};
 use crate::fidelity::Fidelity;
 use crate::report;
 use serde_json::json;
-use std::fmt::Write as _;
 use std::path::Path;
 
 /// The conventions another tracer must follow (docs/PHYSICS.md §1), as written into every pack.
@@ -50,58 +49,75 @@ fn observer_name(o: &Observer) -> &'static str {
 
 /// `probes.csv` of a case.
 pub fn probes_csv(case: &Case) -> String {
-    let mut s = String::from(
-        "point,coordinate,observer,position_x_m,position_y_m,position_z_m,incidence_angle_deg,wavelength_nm,thickness_nm\n",
-    );
-    for (i, p) in build::probe_points(&case.spec.probe).iter().enumerate() {
-        let pos = match &p.observer {
-            Observer::Point { position_m, .. } => position_m
-                .iter()
-                .map(|x| format!("{x:.17e}"))
-                .collect::<Vec<_>>()
-                .join(","),
-            _ => ",,".into(),
-        };
-        let o = &p.overrides;
-        let opt = |x: Option<f64>| x.map(|v| format!("{v:.17e}")).unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "{i},{:.17e},{},{pos},{},{},{}",
-            p.coordinate,
-            observer_name(&p.observer),
-            opt(o.incidence.map(|x| x.0.to_degrees())),
-            opt(o.wavelength_m.map(|x| x * 1e9)),
-            opt(o.thickness.as_ref().map(|x| x.1 * 1e9)),
-        );
-    }
-    s
+    let opt = |x: Option<f64>| x.map(|v| format!("{v:.17e}")).unwrap_or_default();
+    let rows = build::probe_points(&case.spec.probe)
+        .into_iter()
+        .enumerate()
+        .map(|(i, p)| {
+            let pos = match &p.observer {
+                Observer::Point { position_m, .. } => position_m.map(|x| format!("{x:.17e}")),
+                _ => Default::default(),
+            };
+            let o = &p.overrides;
+            let mut fields = vec![
+                i.to_string(),
+                format!("{:.17e}", p.coordinate),
+                observer_name(&p.observer).to_string(),
+            ];
+            fields.extend(pos);
+            fields.extend([
+                opt(o.incidence.map(|x| x.0.to_degrees())),
+                opt(o.wavelength_m.map(|x| x * 1e9)),
+                opt(o.thickness.as_ref().map(|x| x.1 * 1e9)),
+            ]);
+            fields
+        });
+    report::csv_text(
+        &[
+            "point",
+            "coordinate",
+            "observer",
+            "position_x_m",
+            "position_y_m",
+            "position_z_m",
+            "incidence_angle_deg",
+            "wavelength_nm",
+            "thickness_nm",
+        ],
+        rows,
+    )
 }
 
 /// `expected.csv` of a case run.
 pub fn expected_csv(result: &CaseResult, qs: &[Quantity]) -> String {
-    let mut s = String::from("quantity,reference,coordinate,closed_form");
-    for l in &result.levels {
-        let _ = write!(s, ",traced_{l}");
-    }
-    s.push('\n');
+    let mut header: Vec<String> = ["quantity", "reference", "coordinate", "closed_form"]
+        .map(String::from)
+        .to_vec();
+    header.extend(result.levels.iter().map(|l| format!("traced_{l}")));
+    let mut rows = Vec::new();
     for q in qs {
         for &mi in &q.metrics {
             let m = &result.metrics[mi];
             for (k, x) in m.coordinates.iter().enumerate() {
-                let _ = write!(s, "{},{},{x:.17e},{:.17e}", q.name, m.name, m.analytic[k]);
+                let mut fields = vec![
+                    q.name.clone(),
+                    m.name.clone(),
+                    format!("{x:.17e}"),
+                    format!("{:.17e}", m.analytic[k]),
+                ];
                 for l in &result.levels {
-                    match m.traced.get(l) {
-                        Some(t) => {
-                            let _ = write!(s, ",{:.17e}", t[k]);
-                        }
-                        None => s.push(','),
-                    }
+                    fields.push(
+                        m.traced
+                            .get(l)
+                            .map(|t| format!("{:.17e}", t[k]))
+                            .unwrap_or_default(),
+                    );
                 }
-                s.push('\n');
+                rows.push(fields);
             }
         }
     }
-    s
+    report::csv_text(&header.iter().map(String::as_str).collect::<Vec<_>>(), rows)
 }
 
 /// `pack.json` of a case run.

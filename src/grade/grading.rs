@@ -132,28 +132,32 @@ pub fn judge(
 /// `values_profile.csv`: per quantity, coordinate, values, closed form of its first reference,
 /// and every traced rung.
 fn profile_csv(result: &CaseResult, quantities: &[Quantity], values: &[Vec<f64>]) -> String {
-    let mut s = String::from("quantity,coordinate,values,closed_form");
-    for l in &result.levels {
-        s.push_str(&format!(",traced_{l}"));
-    }
-    s.push('\n');
+    let mut header: Vec<String> = ["quantity", "coordinate", "values", "closed_form"]
+        .map(String::from)
+        .to_vec();
+    header.extend(result.levels.iter().map(|l| format!("traced_{l}")));
+    let mut rows = Vec::new();
     for (q, v) in quantities.iter().zip(values) {
         let m = &result.metrics[q.metrics[0]];
         for (k, x) in q.coordinates.iter().enumerate() {
-            s.push_str(&format!(
-                "{},{:.17e},{:.17e},{:.17e}",
-                q.name, x, v[k], m.analytic[k]
-            ));
+            let mut fields = vec![
+                q.name.clone(),
+                format!("{x:.17e}"),
+                format!("{:.17e}", v[k]),
+                format!("{:.17e}", m.analytic[k]),
+            ];
             for l in &result.levels {
-                match m.traced.get(l) {
-                    Some(t) => s.push_str(&format!(",{:.17e}", t[k])),
-                    None => s.push(','),
-                }
+                fields.push(
+                    m.traced
+                        .get(l)
+                        .map(|t| format!("{:.17e}", t[k]))
+                        .unwrap_or_default(),
+                );
             }
-            s.push('\n');
+            rows.push(fields);
         }
     }
-    s
+    report::csv_text(&header.iter().map(String::as_str).collect::<Vec<_>>(), rows)
 }
 
 /// Load and run the case named by `case` (library name or path), as `check` does.

@@ -41,14 +41,13 @@ pub const COORDINATE_TOLERANCE: f64 = 1e-9;
 
 /// Write `values` (one vector per quantity) as a value file.
 pub fn to_csv(quantities: &[Quantity], values: &[Vec<f64>]) -> String {
-    let mut s = String::from(HEADER);
-    s.push('\n');
-    for (q, v) in quantities.iter().zip(values) {
-        for (x, y) in q.coordinates.iter().zip(v) {
-            s.push_str(&format!("{},{:.17e},{:.17e}\n", q.name, x, y));
-        }
-    }
-    s
+    let rows = quantities.iter().zip(values).flat_map(|(q, v)| {
+        q.coordinates
+            .iter()
+            .zip(v)
+            .map(|(x, y)| vec![q.name.clone(), format!("{x:.17e}"), format!("{y:.17e}")])
+    });
+    crate::report::csv_text(&HEADER.split(',').collect::<Vec<_>>(), rows)
 }
 
 /// Parse a value file against the quantities it must supply; returns one vector per quantity.
@@ -66,16 +65,31 @@ pub fn parse(text: &str, quantities: &[Quantity]) -> Result<Vec<Vec<f64>>, Value
     let mut out: Vec<Vec<f64>> = quantities.iter().map(|_| Vec::new()).collect();
     let mut header_seen = false;
     let mut next = 0usize;
-    let mut last_line = 0usize;
-    for (i, raw) in text.lines().enumerate() {
-        let line = i + 1;
-        last_line = line;
-        let l = raw.trim_end_matches('\r');
-        if l.trim().is_empty() || l.trim_start().starts_with('#') {
+    let last_line = text.lines().count();
+    // Read by the `csv` crate (quoted fields, CRLF); comment and blank lines are skipped here.
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .flexible(true)
+        .comment(Some(b'#'))
+        .from_reader(text.as_bytes());
+    let mut record = csv::StringRecord::new();
+    loop {
+        match reader.read_record(&mut record) {
+            Ok(true) => {}
+            Ok(false) => break,
+            Err(e) => {
+                let line = e.position().map_or(last_line, |p| p.line() as usize);
+                return Err(err(line, 1, format!("not CSV text: {e}")));
+            }
+        }
+        let line = record.position().map_or(last_line, |p| p.line() as usize);
+        let fields: Vec<&str> = record.iter().collect();
+        let l = fields.join(",");
+        if fields.iter().all(|f| f.trim().is_empty()) || fields[0].trim_start().starts_with('#') {
             continue;
         }
         if !header_seen {
-            if l.trim() != HEADER {
+            if !fields.iter().map(|f| f.trim()).eq(HEADER.split(',')) {
                 return Err(err(
                     line,
                     1,
@@ -85,7 +99,6 @@ pub fn parse(text: &str, quantities: &[Quantity]) -> Result<Vec<Vec<f64>>, Value
             header_seen = true;
             continue;
         }
-        let fields: Vec<&str> = l.split(',').collect();
         if fields.len() != 3 {
             return Err(err(
                 line,

@@ -444,24 +444,30 @@ pub fn summarize(rows: &[GridRow]) -> Vec<Summary> {
 
 /// `models.csv`: every grid row.
 pub fn grid_csv(rows: &[GridRow]) -> String {
-    let mut s = String::from(
-        "stack,comparison,theta_deg,thickness_um,max_abs_dR,at_lambda_nm,dE00,retardance_err_deg\n",
-    );
-    for r in rows {
-        let _ = writeln!(
-            s,
-            "{},{},{},{:.6},{:.6e},{},{:.6},{:.6}",
-            r.stack,
-            r.comparison,
-            r.theta_deg,
-            r.thickness_um,
-            r.max_abs_dr,
-            r.at_nm,
-            r.de00,
-            r.retardance_err_deg
-        );
-    }
-    s
+    crate::report::csv_text(
+        &[
+            "stack",
+            "comparison",
+            "theta_deg",
+            "thickness_um",
+            "max_abs_dR",
+            "at_lambda_nm",
+            "dE00",
+            "retardance_err_deg",
+        ],
+        rows.iter().map(|r| {
+            vec![
+                r.stack.to_string(),
+                r.comparison.to_string(),
+                r.theta_deg.to_string(),
+                format!("{:.6}", r.thickness_um),
+                format!("{:.6e}", r.max_abs_dr),
+                r.at_nm.to_string(),
+                format!("{:.6}", r.de00),
+                format!("{:.6}", r.retardance_err_deg),
+            ]
+        }),
+    )
 }
 
 fn opt(x: Option<f64>, unit: &str) -> String {
@@ -471,30 +477,41 @@ fn opt(x: Option<f64>, unit: &str) -> String {
 
 /// `summary.csv`: the error table.
 pub fn summary_csv(rows: &[Summary]) -> String {
-    let mut s = String::from(
-        "stack,comparison,worst_abs_dR,dR_theta_deg,dR_thickness_um,dR_lambda_nm,worst_dE00,dE_theta_deg,dE_thickness_um,fraction_dE00_below_1,dE00_below_1_from_thickness_um,dE00_below_1_up_to_deg,worst_retardance_err_deg\n",
-    );
-    for r in rows {
-        let o = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
-        let _ = writeln!(
-            s,
-            "{},{},{:.3e},{},{:.4},{},{:.3},{},{:.4},{:.4},{},{},{:.3}",
-            r.stack,
-            r.comparison,
-            r.worst_dr,
-            r.worst_dr_at.0,
-            r.worst_dr_at.1,
-            r.worst_dr_at.2,
-            r.worst_de,
-            r.worst_de_at.0,
-            r.worst_de_at.1,
-            r.fraction_de_below_1,
-            o(r.de_below_1_from_um),
-            o(r.de_below_1_up_to_deg),
-            r.worst_retardance_deg
-        );
-    }
-    s
+    let o = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
+    crate::report::csv_text(
+        &[
+            "stack",
+            "comparison",
+            "worst_abs_dR",
+            "dR_theta_deg",
+            "dR_thickness_um",
+            "dR_lambda_nm",
+            "worst_dE00",
+            "dE_theta_deg",
+            "dE_thickness_um",
+            "fraction_dE00_below_1",
+            "dE00_below_1_from_thickness_um",
+            "dE00_below_1_up_to_deg",
+            "worst_retardance_err_deg",
+        ],
+        rows.iter().map(|r| {
+            vec![
+                r.stack.to_string(),
+                r.comparison.to_string(),
+                format!("{:.3e}", r.worst_dr),
+                r.worst_dr_at.0.to_string(),
+                format!("{:.4}", r.worst_dr_at.1),
+                r.worst_dr_at.2.to_string(),
+                format!("{:.3}", r.worst_de),
+                r.worst_de_at.0.to_string(),
+                format!("{:.4}", r.worst_de_at.1),
+                format!("{:.4}", r.fraction_de_below_1),
+                o(r.de_below_1_from_um),
+                o(r.de_below_1_up_to_deg),
+                format!("{:.3}", r.worst_retardance_deg),
+            ]
+        }),
+    )
 }
 
 /// The error table as Markdown (the README's table is this output).

@@ -4,6 +4,8 @@
 //! * `every_library_case_passes`: every `cases/*.json` loads, runs, passes every row that has a
 //!   tolerance, has an exact `auto` level, matches its golden file, and produces only finite
 //!   numbers.
+//! * `the_committed_schema_is_the_one_generated_from_spec_rs`: `cases/schema.json` is what
+//!   `fringe schema` prints (schemars, from the types and their attributes).
 //! * The schema tests: every library case (as written, and re-serialized with every default
 //!   filled in) validates against the schema; the schema and serde name the same keys and
 //!   variants for every type, agree on which keys are required and on each key's JSON type; the
@@ -181,6 +183,32 @@ fn every_library_case_passes() {
 }
 
 // ---------------------------------------------------------------------------------------------
+// The schema is generated from spec.rs.
+
+#[test]
+fn the_committed_schema_is_the_one_generated_from_spec_rs() {
+    let path = root().join("cases/schema.json");
+    let committed = std::fs::read_to_string(&path).unwrap_or_default();
+    let generated = fringe::case::schema::case_schema_text();
+    if committed != generated {
+        let line = committed
+            .lines()
+            .zip(generated.lines())
+            .position(|(a, b)| a != b)
+            .unwrap_or(committed.lines().count().min(generated.lines().count()));
+        panic!(
+            "{} is not the schema generated from src/case/spec.rs (first difference at line {}: \
+             committed {:?}, generated {:?}); regenerate it with\n    \
+             cargo run -- schema > cases/schema.json",
+            path.display(),
+            line + 1,
+            committed.lines().nth(line).unwrap_or("<end>"),
+            generated.lines().nth(line).unwrap_or("<end>")
+        );
+    }
+}
+
+// ---------------------------------------------------------------------------------------------
 // The schema against the library.
 
 #[test]
@@ -236,6 +264,7 @@ fn types() -> Vec<(&'static str, Probe)> {
         ("Polarization", de::<spec::PolarizationSpec>),
         ("Source", de::<spec::SourceSpec>),
         ("Scene", de::<spec::SceneSpec>),
+        ("UnpolarizedModel", de::<spec::UnpolarizedModel>),
         ("FarSide", de::<spec::FarSide>),
         ("SweepParameter", de::<spec::SweepParameter>),
         ("Observer", de::<spec::Observer>),
@@ -295,22 +324,56 @@ fn variants(s: &Value) -> Option<Vec<(String, Value)>> {
         .collect()
 }
 
+/// A unit enum in the schema: `enum` of strings, or `oneOf` of `const` strings (schemars writes
+/// the latter when the variants have doc comments) → the variant names.
+fn unit_variants(s: &Value) -> Option<BTreeSet<String>> {
+    if let Some(e) = s.get("enum").and_then(|e| e.as_array()) {
+        return Some(e.iter().map(|x| x.as_str().unwrap().to_string()).collect());
+    }
+    s.get("oneOf")?
+        .as_array()?
+        .iter()
+        .map(|a| a.get("const")?.as_str().map(str::to_string))
+        .collect()
+}
+
+/// The alternatives of a choice: `oneOf` or `anyOf` (schemars writes an optional object as
+/// `anyOf: [{$ref}, {type: null}]`).
+fn alternatives(x: &Value) -> Option<&Vec<Value>> {
+    x.get("oneOf")
+        .or_else(|| x.get("anyOf"))
+        .and_then(|a| a.as_array())
+}
+
+/// The JSON type a schema names, leaving out `null` when it names a list (`["number", "null"]`
+/// for an optional number).
+fn type_name(x: &Value) -> Option<&str> {
+    match x.get("type")? {
+        Value::String(t) => Some(t),
+        Value::Array(ts) => ts.iter().filter_map(|t| t.as_str()).find(|t| *t != "null"),
+        _ => None,
+    }
+}
+
 /// A value the schema accepts, with every optional key present (the first alternative of
 /// every choice except `null`).
 fn instance(s: &schema::Schema, x: &Value) -> Value {
     let x = s.deref(x);
-    if let Some(alts) = x.get("oneOf").and_then(|a| a.as_array()) {
+    if let Some(alts) = alternatives(x) {
         let alt = alts
             .iter()
             .find(|a| s.deref(a).get("type") != Some(&json!("null")))
             .unwrap();
         return instance(s, alt);
     }
+    if let Some(c) = x.get("const") {
+        return c.clone();
+    }
     if let Some(e) = x.get("enum").and_then(|e| e.as_array()) {
         return e[0].clone();
     }
     let f = |k: &str| x.get(k).and_then(|v| v.as_f64());
-    match x.get("type").and_then(|t| t.as_str()) {
+    match type_name(x) {
         Some("object") => {
             let mut o = serde_json::Map::new();
             if let Some(p) = x.get("properties").and_then(|p| p.as_object()) {
@@ -348,16 +411,16 @@ fn instance(s: &schema::Schema, x: &Value) -> Value {
 /// A value of the wrong JSON type for schema `x` (serde and the schema must both reject it).
 fn wrong_type(s: &schema::Schema, x: &Value) -> Value {
     let x = s.deref(x);
-    let nullable_of = x.get("oneOf").and_then(|a| a.as_array()).and_then(|alts| {
+    let nullable_of = alternatives(x).and_then(|alts| {
         alts.iter()
             .find(|a| s.deref(a).get("type") != Some(&json!("null")))
             .filter(|_| alts.len() == 2)
     });
     let t = match nullable_of {
-        Some(inner) => s.deref(inner).get("type").cloned(),
-        None => x.get("type").cloned(),
+        Some(inner) => type_name(s.deref(inner)),
+        None => type_name(x),
     };
-    match t.as_ref().and_then(|t| t.as_str()) {
+    match t {
         Some("string") => json!(12),
         Some("number") | Some("integer") => json!("12"),
         Some("boolean") => json!("true"),
@@ -410,15 +473,13 @@ fn schema_and_spec_rs_name_the_same_keys_and_variants() {
     for (name, probe) in types() {
         let d = def(&s, name);
         // Enums: the variant names.
-        let schema_variants: Option<BTreeSet<String>> = if let Some(vs) = variants(d) {
-            Some(vs.into_iter().map(|v| v.0).collect())
-        } else {
-            d.get("enum")
-                .and_then(|e| e.as_array())
-                .map(|e| e.iter().map(|x| x.as_str().unwrap().to_string()).collect())
+        let units = unit_variants(d);
+        let schema_variants: Option<BTreeSet<String>> = match variants(d) {
+            Some(vs) => Some(vs.into_iter().map(|v| v.0).collect()),
+            None => units.clone(),
         };
         if let Some(sv) = schema_variants {
-            let probe_value = if d.get("enum").is_some() {
+            let probe_value = if units.is_some() {
                 json!(UNKNOWN)
             } else {
                 json!({ UNKNOWN: {} })

@@ -742,3 +742,34 @@ fn a_case_file_outside_the_library_blesses_beside_itself() {
         "the repository's golden/ changed"
     );
 }
+
+/// `fringe schema` prints the case-file schema generated from the case types: the text of the
+/// committed cases/schema.json (which `case_library::the_committed_schema_is_…` keeps current),
+/// on stdout, with nothing on stderr; it runs from any directory (nothing is read from disk).
+#[test]
+fn schema_prints_the_committed_case_schema() {
+    let dir = tempfile::tempdir().unwrap();
+    let o = fringe()
+        .arg("schema")
+        .current_dir(dir.path())
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0));
+    assert!(
+        o.stderr.is_empty(),
+        "{}",
+        String::from_utf8_lossy(&o.stderr)
+    );
+    let committed = std::fs::read_to_string(root().join("cases/schema.json")).unwrap();
+    let printed = String::from_utf8(o.stdout).unwrap();
+    assert!(
+        printed == committed,
+        "fringe schema differs from cases/schema.json; regenerate with \
+         `cargo run -- schema > cases/schema.json`"
+    );
+    let v: serde_json::Value = serde_json::from_str(&printed).unwrap();
+    assert_eq!(
+        v["$schema"], "https://json-schema.org/draft/2020-12/schema",
+        "a draft 2020-12 schema"
+    );
+}

@@ -1,8 +1,9 @@
-//! A small JSON Schema (draft 2020-12) validator for the subset `cases/schema.json` uses:
-//! `$ref` into `$defs`, `type`, `properties`, `required`, `additionalProperties` (false or a
-//! schema), `minProperties`, `items`, `minItems`, `maxItems`, `uniqueItems`, `oneOf`, `enum`,
+//! A small JSON Schema (draft 2020-12) validator for the subset `cases/schema.json` (generated
+//! by schemars from src/case/spec.rs) uses: `$ref` into `$defs`, `type` (one name or a list),
+//! `properties`, `required`, `additionalProperties` (false or a schema), `minProperties`,
+//! `items`, `minItems`, `maxItems`, `uniqueItems`, `oneOf`, `anyOf`, `enum`, `const`,
 //! `minimum`, `maximum`, `exclusiveMinimum`, and `pattern` of the form `^[class]{m,n}$` or
-//! `^[class]+$`. Any other keyword makes [`Schema::new`] fail, so the schema cannot silently use
+//! `^[class]+$`; `format` is an annotation (as draft 2020-12 has it by default). Any other keyword makes [`Schema::new`] fail, so the schema cannot silently use
 //! something this validator ignores. Included with `#[path]` by tests/case_library.rs and
 //! tests/case_parser_props.rs (this folder is not a test target of its own).
 #![allow(dead_code)]
@@ -19,6 +20,7 @@ const ANNOTATIONS: &[&str] = &[
     "default",
     "examples",
     "$comment",
+    "format",
 ];
 const KEYWORDS: &[&str] = &[
     "$ref",
@@ -32,7 +34,9 @@ const KEYWORDS: &[&str] = &[
     "maxItems",
     "uniqueItems",
     "oneOf",
+    "anyOf",
     "enum",
+    "const",
     "minimum",
     "maximum",
     "exclusiveMinimum",
@@ -79,7 +83,7 @@ impl Schema {
                     }
                 }
                 "items" | "additionalProperties" => self.check_keywords(v, &here)?,
-                "oneOf" => {
+                "oneOf" | "anyOf" => {
                     for (i, sub) in v
                         .as_array()
                         .ok_or(format!("{here}: not an array"))?
@@ -98,13 +102,22 @@ impl Schema {
                         .ok_or(format!("{here}: unsupported pattern {v}"))?;
                 }
                 "type" => {
-                    let t = v.as_str().ok_or(format!("{here}: use one type name"))?;
-                    if ![
-                        "object", "array", "string", "number", "integer", "boolean", "null",
-                    ]
-                    .contains(&t)
-                    {
-                        return Err(format!("{here}: unknown type {t}"));
+                    let names: Vec<&str> = match v {
+                        Value::String(t) => vec![t.as_str()],
+                        Value::Array(ts) => ts.iter().filter_map(|t| t.as_str()).collect(),
+                        _ => vec![],
+                    };
+                    if names.is_empty() {
+                        return Err(format!("{here}: a type name or a list of them"));
+                    }
+                    for t in names {
+                        if ![
+                            "object", "array", "string", "number", "integer", "boolean", "null",
+                        ]
+                        .contains(&t)
+                        {
+                            return Err(format!("{here}: unknown type {t}"));
+                        }
                     }
                 }
                 _ => {}
@@ -159,8 +172,8 @@ impl Schema {
             self.check(target, v, at, errors);
             return;
         }
-        if let Some(t) = s.get("type").and_then(|t| t.as_str()) {
-            let ok = match t {
+        if let Some(t) = s.get("type") {
+            let is = |t: &str| match t {
                 "object" => v.is_object(),
                 "array" => v.is_array(),
                 "string" => v.is_string(),
@@ -171,10 +184,20 @@ impl Schema {
                 "null" => v.is_null(),
                 _ => false,
             };
+            let ok = match t {
+                Value::String(t) => is(t),
+                Value::Array(ts) => ts.iter().filter_map(|t| t.as_str()).any(is),
+                _ => false,
+            };
             if !ok {
                 fail(format!("expected {t}, got {v}"));
                 return;
             }
+        }
+        if let Some(c) = s.get("const")
+            && c != v
+        {
+            fail(format!("{v} is not {c}"));
         }
         if let Some(e) = s.get("enum").and_then(|e| e.as_array())
             && !e.contains(v)
@@ -251,6 +274,27 @@ impl Schema {
                         Some(ap) => self.check(ap, x, &sub, errors),
                     },
                 }
+            }
+        }
+        if let Some(alts) = s.get("anyOf").and_then(|a| a.as_array()) {
+            let mut closest: Option<Vec<String>> = None;
+            for alt in alts {
+                let mut e = Vec::new();
+                self.check(alt, v, at, &mut e);
+                if e.is_empty() {
+                    closest = None;
+                    break;
+                }
+                if closest.as_ref().is_none_or(|c| e.len() < c.len()) {
+                    closest = Some(e);
+                }
+            }
+            if let Some(e) = closest {
+                errors.push(format!(
+                    "{at}: matches none of the {} alternatives; closest: {}",
+                    alts.len(),
+                    e.join("; ")
+                ));
             }
         }
         if let Some(alts) = s.get("oneOf").and_then(|a| a.as_array()) {
