@@ -149,6 +149,7 @@ pub mod case;
 pub mod check;
 #[warn(missing_docs)]
 pub mod colour;
+pub mod conditioning;
 #[warn(missing_docs)]
 pub mod double_double;
 pub mod fidelity;

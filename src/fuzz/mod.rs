@@ -115,6 +115,10 @@ fn build(family: Family, mut d: Draws, mutation: Option<Mutation>) -> Scene {
     }
 }
 
+/// The least tolerance the fuzz gate applies (relative): the library's exact-reference
+/// tolerance; the derived one is usually far below it (docs/PHYSICS.md §8).
+pub const DERIVED_FLOOR: f64 = 1e-12;
+
 /// The verdict on one scene.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
@@ -191,11 +195,17 @@ pub fn judge(case: &Value, file: &Path) -> Verdict {
             reason: "$.references: no primary reference".into(),
         };
     };
-    let tolerance = primary
+    // The tolerance the arithmetic allows this scene (docs/PHYSICS.md §8, derived from the
+    // conditioning of the traced sum, at least 1e-12), never looser than the case's own: a
+    // verdict means "outside what the arithmetic allows", not "outside a flat 1e-9".
+    let stated = primary
         .tolerances
         .get(&Fidelity::Vector)
         .copied()
         .unwrap_or(0.0);
+    let tolerance = primary
+        .derived_tolerance(&result.rounding, DERIVED_FLOOR)
+        .map_or(stated, |d| d.min(stated));
     let Some(stats) = primary.stats(Fidelity::Vector) else {
         return Verdict::Refused {
             reason: "$.references[0]: the primary reference has no traced value at vector".into(),
