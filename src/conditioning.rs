@@ -13,7 +13,8 @@
 //! * amplitude: each of the m_k events multiplies by a Fresnel coefficient of a few u relative
 //!   error, δa_k = C u (m_k + 1) |E_k|; a spreading factor from the path solver's
 //!   finite-difference Jacobian (step h = 1e-6 of the launch parameters, residuals of f64
-//!   coordinates of size X at distance ℓ) adds C u X/(h ℓ) of |E_k|;
+//!   coordinates of size X at distance ℓ, each rounded by u X) adds u X/(h ℓ) of |E_k| (half
+//!   the relative error of S² = 1/det J, whose entries are differences of two residuals);
 //! * the sum: adding n_g fields rounds by u n_g Σ_k |E_k|.
 //!
 //! With δE_g = Σ_k |E_k| δφ_k + δa_k + u n_g Σ_k |E_k|, |δI_g| ≤ 2|E_g| δE_g + δE_g², and the
@@ -68,7 +69,7 @@ pub fn intensity_rounding(arrivals: &[Arrival], reference: DoubleDouble, lambda_
                 .sum::<f64>()
                 .max(f64::MIN_POSITIVE);
             let end = a.vector.origin.abs().max_element();
-            da += cu * x.max(end) / (SPREADING_STEP * ell);
+            da += UNIT_ROUNDOFF * x.max(end) / (SPREADING_STEP * ell);
         }
         let term = e * (dphi + da);
         if c.coherence_id == INCOHERENT {

@@ -680,10 +680,12 @@ fn plane_wave_beams(
                 amp_s *= f.r_s;
                 amp_p *= f.r_p;
             } else {
-                u = fresnel::refract(u, nrm, n1, n2)
-                    .ok_or(format!("TIR at {:?} on a refraction event", ev.surface))?;
                 ud = analytic::precise::refract(&ud, &nd, n1, n2)
                     .ok_or(format!("TIR at {:?} on a refraction event", ev.surface))?;
+                // The f64 direction rounded from the double-double one: just below a critical
+                // angle the f64 Snell law leaves the grazing beam's direction ~1e-9 off (or
+                // totally reflected), and the beam would miss its far-field direction.
+                u = DVec3::new(f64::from(ud[0]), f64::from(ud[1]), f64::from(ud[2])).normalize();
                 amp_s *= f.t_s;
                 amp_p *= f.t_p;
                 n = n2;
