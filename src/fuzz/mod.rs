@@ -2,7 +2,9 @@
 //! same load → preflight → run → compare path as `fringe check` (the case loader
 //! [`crate::case::load::parse`], [`crate::case::run::preflight`] and
 //! [`crate::case::run::run_with`]) and judged at the `vector` level against its primary
-//! reference with the case's tolerance.
+//! reference at the scene's derived tolerance: what the arithmetic allows
+//! ([`crate::conditioning`], docs/PHYSICS.md §8), at least [`DERIVED_FLOOR`] and never looser
+//! than the case's own tolerance.
 //!
 //! Each scene is drawn from its own seeded stream ([`draws::scene_seed`]: seed, family, index),
 //! so a run is deterministic for a seed whatever the families or counts asked for. A scene is
