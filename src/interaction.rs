@@ -119,7 +119,7 @@ pub fn normal_wavevector_squares(
         Some((m, q2)) if m == normal || m == -normal => q2,
         _ => {
             let c = DoubleDouble::dot(d_i, normal);
-            let cos2 = (c * c).div(DoubleDouble::dot(d_i, d_i) * DoubleDouble::dot(normal, normal));
+            let cos2 = (c * c) / (DoubleDouble::dot(d_i, d_i) * DoubleDouble::dot(normal, normal));
             cos2 * two_prod(n1, n1)
         }
     };

@@ -738,7 +738,7 @@ pub const PAPER_MISSING: &str =
 /// rounded: the cycles of a path difference of 10 m at 200 nm (5e7) rounded to f64 are 7e-9 off,
 /// more than the phase a thick plate's reference resolves (docs/PHYSICS.md §8).
 pub fn phase_cycles(path: DoubleDouble, reference: DoubleDouble, lambda_m: f64) -> f64 {
-    let c = (path - reference).div(DoubleDouble::from(lambda_m));
+    let c = (path - reference) / DoubleDouble::from(lambda_m);
     (c - DoubleDouble::from(c.hi.round())).to_f64()
 }
 
