@@ -18,7 +18,7 @@
 //! or product ≤ 4·2⁻¹⁰⁶ ≈ 5e-32 (a few units of 2⁻¹⁰⁶), of the square root a few units more.
 
 use glam::DVec3;
-use std::ops::{Add, AddAssign, Mul, Neg, Sub, SubAssign};
+use std::ops::{Add, AddAssign, Div, Mul, Neg, Sub, SubAssign};
 
 /// hi + lo, with hi = fl(hi + lo) (normalized). Units are the caller's (metres for paths).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
@@ -107,6 +107,29 @@ impl DoubleDouble {
         let x = self.hi.sqrt();
         let residual = (self - two_prod(x, x)).to_f64();
         fast_two_sum(x, residual / (2.0 * x))
+    }
+}
+
+impl Div for DoubleDouble {
+    type Output = DoubleDouble;
+    /// self / b in double-double (long division: three f64 quotient digits, each remainder
+    /// formed with [`DoubleDouble::mul_f64`]; relative error ~2⁻¹⁰⁴). `b` must not be 0.
+    #[inline]
+    fn div(self, b: DoubleDouble) -> DoubleDouble {
+        let q1 = self.hi / b.hi;
+        let r = self - b.mul_f64(q1);
+        let q2 = r.hi / b.hi;
+        let r = r - b.mul_f64(q2);
+        let q3 = r.hi / b.hi;
+        fast_two_sum(q1, q2) + q3
+    }
+}
+
+impl DoubleDouble {
+    /// a·b of two f64 vectors in double-double (exact products, summed in double-double).
+    #[inline]
+    pub fn dot(a: DVec3, b: DVec3) -> Self {
+        two_prod(a.x, b.x) + two_prod(a.y, b.y) + two_prod(a.z, b.z)
     }
 }
 
@@ -256,6 +279,22 @@ mod tests {
             "actual {:e}, expected 1e-12, err {err:e}",
             s.to_f64()
         );
+    }
+
+    #[test]
+    fn division_recovers_a_double_double_quotient() {
+        // (1/3) · 3 and 2/7 against their exact decimal expansions (to ~1e-31).
+        let third = DoubleDouble::from(1.0) / DoubleDouble::from(3.0);
+        let back = third * 3.0;
+        assert_eq!(back.hi, 1.0);
+        assert!(back.lo.abs() < 1e-31, "{back:?}");
+        // 2/7 = 0.285714285714285714285714285714285714…: hi + lo from the 34-digit value.
+        let q = DoubleDouble::from(2.0) / DoubleDouble::from(7.0);
+        let hi = 0.285_714_285_714_285_7_f64;
+        assert_eq!(q.hi, hi);
+        // lo = 2/7 − hi, evaluated in exact rational arithmetic (Python `fractions`) and rounded.
+        let lo = 1.586_032_892_321_652e-17;
+        assert!((q.lo - lo).abs() < 1e-32, "{q:?} vs lo {lo:e}");
     }
 
     #[test]

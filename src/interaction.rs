@@ -6,6 +6,7 @@
 //! right-handed. Children inherit or lose the coherence id according to the surface's
 //! [`CoherenceRules`].
 
+use crate::double_double::{DoubleDouble, two_prod};
 use crate::fresnel::{self, FresnelCoefficients};
 use crate::material::CoherenceRules;
 use crate::ray::{Field3, INCOHERENT, LedgerEntry, Ray};
@@ -106,19 +107,82 @@ struct Encounter {
     n2: f64,
     cos_theta_i: f64,
     coefficients: FresnelCoefficients,
+    /// (n1 cos θi)² and (n2 cos θt)² (negative under TIR) in double-double: what the
+    /// children carry to the next parallel face ([`Ray::normal_q2`]).
+    q2_i: DoubleDouble,
+    q2_t: DoubleDouble,
+}
+
+/// The squared normal wavevector components (n1 cos θi)² and (n2 cos θt)² (the second
+/// negative under total internal reflection) of a ray of direction `d_i` in index `n1` meeting
+/// a face of unit normal `normal` into index `n2`, in double-double.
+///
+/// `carried` is the ray's [`Ray::normal_q2`]: used when `normal` is the same line (bitwise ±),
+/// since Snell's law conserves the tangential wavevector and (n2 cos θt)² = (n1 cos θi)² +
+/// n2² − n1² is then exact (docs/PHYSICS.md §8). Otherwise cos²θi = (d_i·N)²/(|d_i|²|N|²) of
+/// the f64 vectors in double-double: the direction as given, whichever of cos θi and sin θi is
+/// the small one. The tracer ([`interact`]) and the path solver (`path::step_planes`) both
+/// call this, so they agree on every total internal reflection.
+pub fn normal_wavevector_squares(
+    d_i: DVec3,
+    normal: DVec3,
+    (n1, n2): (f64, f64),
+    carried: Option<(DVec3, DoubleDouble)>,
+) -> (DoubleDouble, DoubleDouble) {
+    let q2_i = match carried {
+        Some((m, q2)) if m == normal || m == -normal => q2,
+        _ => {
+            let c = DoubleDouble::dot(d_i, normal);
+            let cos2 = (c * c) / (DoubleDouble::dot(d_i, d_i) * DoubleDouble::dot(normal, normal));
+            cos2 * two_prod(n1, n1)
+        }
+    };
+    (q2_i, q2_i + two_prod(n2, n2) - two_prod(n1, n1))
+}
+
+/// The refracted direction η (d_i − (d_i·N_o) N_o) − cos θt N_o (Snell's law in vector form,
+/// η = n1/n2, N_o the normal facing the incident side, docs/PHYSICS.md §1) for a given
+/// cos θt ≥ 0, normalized. The tangential part is formed before it is scaled by η, so for
+/// η ≫ 1 (into a much thinner medium) the normal part is not the small difference of η-sized
+/// terms that η d_i + (η cos θi − cos θt) N_o rounds.
+pub fn snell_direction(d_i: DVec3, normal: DVec3, (n1, n2): (f64, f64), cos_t: f64) -> DVec3 {
+    let n_o = if d_i.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    };
+    let tangential = d_i - d_i.dot(n_o) * n_o;
+    ((n1 / n2) * tangential - cos_t * n_o).normalize()
 }
 
 impl Encounter {
-    fn new(d_i: DVec3, index: f64, hit: &InterfaceHit, model: CoefficientModel) -> Self {
-        let cos_theta_i = d_i.dot(hit.normal).abs().min(1.0);
+    /// `carried`: the ray's [`Ray::normal_q2`]; used when `hit`'s normal is the same line
+    /// (bitwise ±), else q² is formed from d_i·N of the f64 vectors (exact products).
+    fn new(
+        d_i: DVec3,
+        index: f64,
+        carried: Option<(DVec3, DoubleDouble)>,
+        hit: &InterfaceHit,
+        model: CoefficientModel,
+    ) -> Self {
         let (n1, n2) = indices_for(hit.optics, hit.normal, d_i, index);
+        // Snell's law as conservation of the tangential wavevector: the normal components obey
+        // (n2 cos θt)² = (n1 cos θi)² + (n2 − n1)(n2 + n1), formed exactly in double-double
+        // (docs/PHYSICS.md §8), so a cosine that is a small difference of large squares (light
+        // leaving a film at near-grazing outside) keeps its digits.
+        let (q2_i, q2_t) = normal_wavevector_squares(d_i, hit.normal, (n1, n2), carried);
+        let cos_theta_i = (q2_i.sqrt().to_f64() / n1).min(1.0);
         let coefficients = match (hit.optics, model) {
             (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
             (SurfaceOptics::Splitter { reflectance, .. }, _) => {
                 fresnel::ideal_splitter(reflectance, d_i.dot(hit.normal) < 0.0)
             }
             (SurfaceOptics::Dielectric { .. }, CoefficientModel::Vector) => {
-                fresnel::fresnel(n1, n2, cos_theta_i)
+                if n1 == n2 {
+                    fresnel::fresnel(n1, n2, cos_theta_i)
+                } else {
+                    fresnel::fresnel_with_cos2_t(n1, n2, cos_theta_i, q2_t.to_f64() / (n2 * n2))
+                }
             }
             (SurfaceOptics::Dielectric { .. }, CoefficientModel::PaperRules) => {
                 fresnel::paper_rules(n1, n2, cos_theta_i)
@@ -131,6 +195,8 @@ impl Encounter {
             n2,
             cos_theta_i,
             coefficients,
+            q2_i,
+            q2_t,
         }
     }
 
@@ -161,7 +227,7 @@ struct Split {
 fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
     parent.advance_to(hit.point);
     // Step 1: the coefficients and the s/p frame of the incident ray.
-    let encounter = Encounter::new(parent.dir, parent.index, hit, model);
+    let encounter = Encounter::new(parent.dir, parent.index, parent.normal_q2, hit, model);
     let s = encounter.s_for(parent.x);
     // Step 2: the field along s and p_i.
     let (a_s, a_p) = encounter.amplitudes(&parent.field(), s);
@@ -177,6 +243,8 @@ fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split
 /// (c_s, c_p) it applies, its medium, whether it keeps coherence and its ledger entry.
 struct Branch {
     dir: DVec3,
+    /// The child's (n cos θ)² about the hit's normal ([`Ray::normal_q2`]).
+    q2: DoubleDouble,
     c: [Complex64; 2],
     index: f64,
     keep: bool,
@@ -188,6 +256,7 @@ fn reflected(en: &Encounter, hit: &InterfaceHit) -> Branch {
     let c = &en.coefficients;
     Branch {
         dir: fresnel::reflect(en.d_i, hit.normal),
+        q2: en.q2_i,
         c: [c.r_s, c.r_p],
         index: en.n1,
         keep: hit.coherence.reflected_keeps,
@@ -206,8 +275,24 @@ fn refracted(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
         return None;
     }
     let c = &en.coefficients;
+    let dir = if matches!(hit.optics, SurfaceOptics::Dielectric { .. }) && en.n1 != en.n2 {
+        // Snell's law in vector form with cos θt from the double-double (n2 cos θt)² (the
+        // path solver's TIR verdict and direction, `path::step_planes`).
+        if en.q2_t.hi < 0.0 {
+            return None;
+        }
+        snell_direction(
+            en.d_i,
+            hit.normal,
+            (en.n1, en.n2),
+            en.q2_t.sqrt().to_f64() / en.n2,
+        )
+    } else {
+        fresnel::refract(en.d_i, hit.normal, en.n1, en.n2)?
+    };
     Some(Branch {
-        dir: fresnel::refract(en.d_i, hit.normal, en.n1, en.n2)?,
+        dir,
+        q2: en.q2_t,
         c: [c.t_s, c.t_p],
         index: en.n2,
         keep: hit.coherence.refracted_keeps,
@@ -238,8 +323,9 @@ fn child_frame(b: &Branch, s: DVec3, a_s: Complex64, a_p: Complex64) -> JonesFra
 }
 
 /// Turns the split parent `ray` into its child along `b`.
-fn child(ray: &mut Ray, sp: &Split, b: Branch) {
+fn child(ray: &mut Ray, sp: &Split, hit: &InterfaceHit, b: Branch) {
     ray.dir = b.dir;
+    ray.normal_q2 = Some((hit.normal, b.q2));
     child_frame(&b, sp.s, sp.a_s, sp.a_p).apply_to(ray);
     ray.index = b.index;
     if !b.keep && ray.coherence_id != INCOHERENT {
@@ -257,10 +343,10 @@ pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Child
     let sp = split(&mut parent, hit, model);
     let refracted = refracted(&sp.encounter, hit).map(|b| {
         let mut r = parent.clone();
-        child(&mut r, &sp, b);
+        child(&mut r, &sp, hit, b);
         r
     });
-    child(&mut parent, &sp, reflected(&sp.encounter, hit));
+    child(&mut parent, &sp, hit, reflected(&sp.encounter, hit));
     let en = &sp.encounter;
     Children {
         reflected: parent,
@@ -296,7 +382,7 @@ pub fn interact_along_in_place(
     let Some(b) = followed(&sp.encounter, hit, reflect) else {
         return false;
     };
-    child(ray, &sp, b);
+    child(ray, &sp, hit, b);
     true
 }
 
@@ -349,7 +435,7 @@ pub fn interact_along_shared(
     reflect: bool,
 ) -> bool {
     lead.advance_to(hit.point);
-    let encounter = Encounter::new(lead.dir, lead.index, hit, model);
+    let encounter = Encounter::new(lead.dir, lead.index, lead.normal_q2, hit, model);
     let Some(b) = followed(&encounter, hit, reflect) else {
         return false;
     };
@@ -366,6 +452,6 @@ pub fn interact_along_shared(
         a_s,
         a_p,
     };
-    child(lead, &sp, b);
+    child(lead, &sp, hit, b);
     true
 }

@@ -161,6 +161,7 @@ pub mod case;
 #[doc(hidden)]
 pub mod check;
 pub mod colour;
+pub mod conditioning;
 pub mod double_double;
 pub mod fidelity;
 #[doc(hidden)]

@@ -275,9 +275,14 @@ struct PlaneStep {
     tir: bool,
     /// n2 cos θt/(n1 cos θi) for a refraction, 1 for a reflection.
     refraction_factor: f64,
+    /// The normal and (n cos θ)² after the event, in double-double (`Ray::normal_q2`).
+    q2: (DVec3, DoubleDouble),
 }
 
-/// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`.
+/// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`, carrying
+/// `carried` ([`crate::ray::Ray::normal_q2`]): TIR verdicts, refracted directions and the
+/// refraction factor from the double-double normal wavevectors the tracer uses
+/// ([`interaction::normal_wavevector_squares`]).
 #[inline(always)]
 fn step_planes(
     scene: &Scene,
@@ -285,6 +290,7 @@ fn step_planes(
     k: usize,
     ev: Event,
     (o, d, n): (DVec3, DVec3, f64),
+    carried: Option<(DVec3, DoubleDouble)>,
 ) -> Result<PlaneStep, PathError> {
     let surf = &scene.surfaces[ev.surface];
     let so = surface_optics(optics, k, ev.surface)?;
@@ -299,8 +305,8 @@ fn step_planes(
     // only. Along the plane the rounding is second order (Fermat).
     let x = surf.plane.project(o + t * d);
     let normal = surf.plane.normal;
-    let cos_i = d.dot(normal).abs().min(1.0);
     let (n1, n2) = indices_for(so, normal, d, n);
+    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), carried);
     let mirror = matches!(so, SurfaceOptics::IdealMirror);
     let splitter = matches!(so, SurfaceOptics::Splitter { .. });
     if n1 != n {
@@ -312,23 +318,31 @@ fn step_planes(
             d: fresnel::reflect(d, normal),
             n,
             denser: mirror || n1 < n2 || (splitter && d.dot(normal) < 0.0),
-            tir: !mirror && !splitter && fresnel::cos2_theta_t(n1, n2, cos_i) < 0.0,
+            tir: !mirror && !splitter && q2_t.hi < 0.0,
             refraction_factor: 1.0,
+            q2: (normal, q2_i),
         },
         EventKind::Refract => {
             if mirror {
                 return Err(PathError::TotalInternalReflection { event: k });
             }
-            let d_t = fresnel::refract(d, normal, n1, n2)
-                .ok_or(PathError::TotalInternalReflection { event: k })?;
-            let cos_t = d_t.dot(normal).abs();
+            let d_t = if matches!(so, SurfaceOptics::Dielectric { .. }) && n1 != n2 {
+                if q2_t.hi < 0.0 {
+                    return Err(PathError::TotalInternalReflection { event: k });
+                }
+                interaction::snell_direction(d, normal, (n1, n2), q2_t.sqrt().to_f64() / n2)
+            } else {
+                fresnel::refract(d, normal, n1, n2)
+                    .ok_or(PathError::TotalInternalReflection { event: k })?
+            };
             PlaneStep {
                 x,
                 d: d_t,
                 n: n2,
                 denser: false,
                 tir: false,
-                refraction_factor: (n2 * cos_t) / (n1 * cos_i),
+                refraction_factor: (q2_t.sqrt().to_f64() / q2_i.sqrt().to_f64()),
+                q2: (normal, q2_t),
             }
         }
     })
@@ -349,8 +363,10 @@ fn trace_planes(
         g.start(origin, dir, optics.ambient_index, 0);
     }
     let mut ray = (origin, dir, optics.ambient_index);
+    let mut carried = None;
     for (k, ev) in seq.iter().enumerate() {
-        let step = step_planes(scene, optics, k, *ev, ray)?;
+        let step = step_planes(scene, optics, k, *ev, ray, carried)?;
+        carried = Some(step.q2);
         g.denser_reflections += usize::from(step.denser);
         g.has_tir |= step.tir;
         g.refraction_factor *= step.refraction_factor;
@@ -1313,6 +1329,8 @@ struct Beginning {
     out_of_extent: Option<PathError>,
     /// The first blocked finite segment, if any.
     blocked: Option<PathError>,
+    /// The normal and (n cos θ)² after the last event (`Ray::normal_q2`).
+    q2: Option<(DVec3, DoubleDouble)>,
 }
 
 /// The exact paths of a plane wave into the far field, traced one event at a time so that
@@ -1357,6 +1375,7 @@ impl<'a> FarFieldPaths<'a> {
             optical_path: start,
             out_of_extent: None,
             blocked: None,
+            q2: None,
         };
         FarFieldPaths {
             scene,
@@ -1413,8 +1432,9 @@ impl<'a> FarFieldPaths<'a> {
             *b.dirs.last().unwrap(),
             *b.indices.last().unwrap(),
         );
-        let step = step_planes(self.scene, self.optics, k, ev, (o, d, n))?;
+        let step = step_planes(self.scene, self.optics, k, ev, (o, d, n), b.q2)?;
         let mut next = b.clone();
+        next.q2 = Some(step.q2);
         next.denser_reflections += usize::from(step.denser);
         next.has_tir |= step.tir;
         // The finite segment k, from the last point to this event, as `finish` checks it.

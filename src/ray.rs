@@ -155,6 +155,14 @@ pub struct Ray {
     pub index: f64,
     /// Every phase contribution so far.
     pub ledger: PhaseLedger,
+    /// The squared normal wavevector component q² = (n cos θ)² of the ray with respect to the
+    /// unit normal of the last face it met, in double-double, with that normal; `None` before
+    /// the first face. Snell's law conserves n sin θ, so at the next face *parallel* to that one
+    /// q² crosses into index n' as q'² = q² + n'² − n² exactly (docs/PHYSICS.md §8): the
+    /// cosine leaving a film at near-grazing outside (or into a much lower index) is formed
+    /// without the cancellation of 1 − sin², which from an f64 direction loses all its digits
+    /// (cos θ ~ 1e-8 outside needs sin²θ inside to 1e-32).
+    pub normal_q2: Option<(DVec3, DoubleDouble)>,
 }
 
 impl Ray {
@@ -207,6 +215,7 @@ impl Ray {
             optical_path: DoubleDouble::ZERO,
             index,
             ledger: PhaseLedger::default(),
+            normal_q2: None,
         }
     }
 

@@ -740,13 +740,22 @@ fn far_field_walk(
 pub const PAPER_MISSING: &str =
     "paper_rules asked of an arrival traced without the paper's rules (trace::arrivals_with)";
 
+/// The phase in cycles of the optical path `path` measured from `reference` at vacuum
+/// wavelength `lambda_m`, reduced to its fraction of a cycle in double-double before it is
+/// rounded: the cycles of a path difference of 10 m at 200 nm (5e7) rounded to f64 are 7e-9 off,
+/// more than the phase a thick plate's reference resolves (docs/PHYSICS.md §8).
+pub fn phase_cycles(path: DoubleDouble, reference: DoubleDouble, lambda_m: f64) -> f64 {
+    let c = (path - reference) / DoubleDouble::from(lambda_m);
+    (c - DoubleDouble::from(c.hi.round())).to_f64()
+}
+
 /// The accumulation-core contribution of an arrival at a rung of the ladder, with its path
 /// phase measured from the optical path `reference` (m, double-double): the difference is
 /// formed in double-double and only then rounded and divided by λ, so a path of any length
 /// keeps its phase relative to the reference to ~1e-16 of the difference (docs/PHYSICS.md §1).
 pub fn contribution_from(a: &Arrival, level: Fidelity, reference: DoubleDouble) -> Contribution {
     let v = &a.vector;
-    let cycles = |r: &Ray| (r.optical_path - reference).to_f64() / r.wavelength_m;
+    let cycles = |r: &Ray| phase_cycles(r.optical_path, reference, r.wavelength_m);
     let scalar = |extra_cycles: f64| Contribution {
         coherence_id: v.coherence_id,
         phase_cycles: cycles(v) + extra_cycles,

@@ -608,7 +608,21 @@ pub fn propagating_target(
                             .map_err(|e| e.to_string())?,
                         None => n1,
                     };
-                    crate::fresnel::refract(d, n, n1, n3)
+                    // Snell's law on the double-double normal wavevector, as the tracer
+                    // refracts (`interaction::normal_wavevector_squares`): near the critical
+                    // angle into a much thinner medium the f64 cos²θt is ~1e-9 off.
+                    let (_, q2_t) =
+                        crate::interaction::normal_wavevector_squares(d, n, (n1, n3), None);
+                    (q2_t.hi >= 0.0 && n1 != n3)
+                        .then(|| {
+                            crate::interaction::snell_direction(
+                                d,
+                                n,
+                                (n1, n3),
+                                q2_t.sqrt().to_f64() / n3,
+                            )
+                        })
+                        .or_else(|| (n1 == n3).then_some(d))
                 }
             };
             Ok(dir.map(|dir| Target::Direction { dir, reference }))

@@ -237,7 +237,7 @@ fn faulted_intensity(
         };
         Contribution {
             coherence_id: r.coherence_id,
-            phase_cycles: (path(r) - reference).to_f64() / r.wavelength_m,
+            phase_cycles: crate::trace::phase_cycles(path(r), reference, r.wavelength_m),
             field: field_of(jones, r.x, r.y),
         }
     }));

@@ -607,6 +607,11 @@ fn plane_wave_beams(
             return Err(format!("source {:?} must be a plane wave", b.source));
         };
         let mut u = direction;
+        // The direction in double-double (`twofloat`, independent of the tracer's arithmetic):
+        // the Fresnel coefficients take cos θi and cos²θt from it, since near a critical angle
+        // or leaving a film at near-grazing outside, cos²θt from an f64 direction is a small
+        // difference of large terms (~1e-8 of T off).
+        let mut ud = analytic::precise::unit(direction);
         let mut n = scene.ambient.index(lambda_m).map_err(|e| e.to_string())?;
         // The optical path: [`analytic::tir::plane_wave_path`], double-double.
         let n0 = n;
@@ -653,7 +658,16 @@ fn plane_wave_beams(
                 (Some(s), None) => s_axis = Some(s),
                 _ => {}
             }
-            let f = fresnel::fresnel(n1, n2, cos_i);
+            let nd = analytic::precise::unit(nrm);
+            let cos_i_dd = analytic::precise::dot2(&ud, &nd).abs();
+            let one = twofloat::TwoFloat::from(1.0);
+            let eta = analytic::precise::div(n1.into(), n2.into());
+            let c2t = one - eta * eta * (one - cos_i_dd * cos_i_dd);
+            let f = if n1 == n2 {
+                fresnel::fresnel(n1, n2, cos_i)
+            } else {
+                fresnel::fresnel_with_cos2_t(n1, n2, f64::from(cos_i_dd), f64::from(c2t))
+            };
             faces.push(analytic::tir::Face {
                 point: surf.plane.point,
                 normal: nrm,
@@ -663,11 +677,16 @@ fn plane_wave_beams(
             });
             if ev.reflect {
                 u = fresnel::reflect(u, nrm);
+                ud = analytic::precise::reflect(&ud, &nd);
                 amp_s *= f.r_s;
                 amp_p *= f.r_p;
             } else {
-                u = fresnel::refract(u, nrm, n1, n2)
+                ud = analytic::precise::refract(&ud, &nd, n1, n2)
                     .ok_or(format!("TIR at {:?} on a refraction event", ev.surface))?;
+                // The f64 direction rounded from the double-double one: just below a critical
+                // angle the f64 Snell law leaves the grazing beam's direction ~1e-9 off (or
+                // totally reflected), and the beam would miss its far-field direction.
+                u = DVec3::new(f64::from(ud[0]), f64::from(ud[1]), f64::from(ud[2])).normalize();
                 amp_s *= f.t_s;
                 amp_p *= f.t_p;
                 n = n2;
@@ -912,20 +931,18 @@ pub fn coherence(
             // formed in double-double. Its distance from the continuous-spectrum form |γ(Δs)|
             // is the spectral sampling error ([`gaussian_sampling_error`]), not part of the verdict.
             fwhm_m.ok_or("coherence_gaussian needs Gaussian light")?;
-            // The plate's thickness from exact coordinate differences of its faces' points
-            // (a plate 500 m from the origin: the f64 difference is ~1e-13 m off).
-            let (top, bottom, _) = layer_media(built, plate)?;
-            let (tp, bp) = (
-                &built.scene.surfaces[top].plane,
-                &built.scene.surfaces[bottom].plane,
-            );
-            let d = analytic::precise::dot(&analytic::precise::diff(tp.point, bp.point), tp.normal);
+            // The plate's thickness as held (top point + thickness, `Plane::separation_from`),
+            // never a difference of its faces' rounded points: the bottom face's f64 point of a
+            // 2 nm plate 10 m from the origin is ~1e-15 m off, 1e-7 of R (fuzz
+            // coherence_gaussian seed 7, test precision_classes::…thickness_as_held).
             let mut sum = 0.0;
             for &(lam, w) in spectrum {
                 let (a1, a2, film) = beams(lam)?;
-                let ds = d * (2.0 * film.n2);
-                let c = analytic::precise::path_phasor(ds, lam).re;
-                sum += w * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * c);
+                // a1² + a2² + 2 a1 a2 cos δ as (a1 + a2)² − 4 a1 a2 sin²(δ/2): for a thin film
+                // a1 ≈ −a2 and the first form cancels to ~ε a1²/I (4e-13 of a 2 nm film's R).
+                let half = twofloat::TwoFloat::new_mul(film.n2, film.thickness_m);
+                let sin_half = analytic::precise::path_phasor(half, lam).im;
+                sum += w * ((a1 + a2) * (a1 + a2) - 4.0 * a1 * a2 * sin_half * sin_half);
             }
             Ok(i0 * sum)
         }

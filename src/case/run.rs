@@ -91,6 +91,14 @@ impl MetricResult {
         }
     }
 
+    /// The tolerance the arithmetic allows this metric at `vector` (docs/PHYSICS.md §8): the
+    /// largest per-point rounding bound `rounding` ([`CaseResult::rounding`]) relative to the
+    /// profile's scale, at least `floor`; `None` for metrics other than intensity profiles.
+    pub fn derived_tolerance(&self, rounding: &[f64], floor: f64) -> Option<f64> {
+        (self.kind == MetricKind::Intensity && rounding.len() == self.analytic.len())
+            .then(|| crate::conditioning::relative_tolerance(rounding, &self.analytic, floor))
+    }
+
     /// The deviation statistics of `level` (`None` where the metric is undefined there).
     pub fn stats(&self, level: Fidelity) -> Option<LevelStats> {
         let d = self.deviations(level)?;
@@ -153,10 +161,15 @@ pub struct CaseResult {
     pub observable: Observable,
     /// The smallest errors the primary reference's gate catches (full runs only).
     pub detection: Option<super::detection::DetectionFloors>,
+    /// Per probe point, the bound on the rounding error of the traced `vector` intensity that
+    /// the arithmetic allows ([`crate::conditioning::intensity_rounding`], same units).
+    pub rounding: Vec<f64>,
 }
 
 struct PointOut {
     intensity: BTreeMap<Fidelity, f64>,
+    /// [`crate::conditioning::intensity_rounding`] summed over the spectrum like the intensity.
+    rounding: f64,
     analytic: Vec<f64>,
     /// Retardance / visibility per reference and level.
     special: Vec<BTreeMap<Fidelity, f64>>,
@@ -677,6 +690,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
     let spec = &case.spec;
     let mut out = PointOut {
         intensity: levels.iter().map(|l| (*l, 0.0)).collect(),
+        rounding: 0.0,
         analytic: vec![0.0; spec.references.len()],
         special: vec![BTreeMap::new(); spec.references.len()],
         needs: SceneNeeds::default(),
@@ -709,6 +723,9 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             acc.clear();
             acc.extend(&contributions);
             *out.intensity.get_mut(l).unwrap() += w * factor * acc.intensity();
+        }
+        if let Some(r) = reference {
+            out.rounding += w * factor * crate::conditioning::intensity_rounding(&arr, r, lambda);
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity
@@ -1045,6 +1062,7 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         dark_points,
         observable: measured,
         detection: None,
+        rounding: outs.iter().map(|o| o.rounding).collect(),
     };
     if convergence_report {
         result.convergence = convergence(case, &points)?;

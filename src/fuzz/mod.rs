@@ -2,7 +2,9 @@
 //! same load → preflight → run → compare path as `fringe check` (the case loader
 //! [`crate::case::load::parse`], [`crate::case::run::preflight`] and
 //! [`crate::case::run::run_with`]) and judged at the `vector` level against its primary
-//! reference with the case's tolerance.
+//! reference at the scene's derived tolerance: what the arithmetic allows
+//! ([`crate::conditioning`], docs/PHYSICS.md §8), at least [`DERIVED_FLOOR`] and never looser
+//! than the case's own tolerance.
 //!
 //! Each scene is drawn from its own seeded stream ([`draws::scene_seed`]: seed, family, index),
 //! so a run is deterministic for a seed whatever the families or counts asked for. A scene is
@@ -115,6 +117,10 @@ fn build(family: Family, mut d: Draws, mutation: Option<Mutation>) -> Scene {
     }
 }
 
+/// The least tolerance the fuzz gate applies (relative): the library's exact-reference
+/// tolerance; the derived one is usually far below it (docs/PHYSICS.md §8).
+pub const DERIVED_FLOOR: f64 = 1e-12;
+
 /// The verdict on one scene.
 #[derive(Clone, Debug, PartialEq)]
 pub enum Verdict {
@@ -191,11 +197,17 @@ pub fn judge(case: &Value, file: &Path) -> Verdict {
             reason: "$.references: no primary reference".into(),
         };
     };
-    let tolerance = primary
+    // The tolerance the arithmetic allows this scene (docs/PHYSICS.md §8, derived from the
+    // conditioning of the traced sum, at least 1e-12), never looser than the case's own: a
+    // verdict means "outside what the arithmetic allows", not "outside a flat 1e-9".
+    let stated = primary
         .tolerances
         .get(&Fidelity::Vector)
         .copied()
         .unwrap_or(0.0);
+    let tolerance = primary
+        .derived_tolerance(&result.rounding, DERIVED_FLOOR)
+        .map_or(stated, |d| d.min(stated));
     let Some(stats) = primary.stats(Fidelity::Vector) else {
         return Verdict::Refused {
             reason: "$.references[0]: the primary reference has no traced value at vector".into(),

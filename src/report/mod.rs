@@ -181,7 +181,13 @@ pub fn rows(r: &CaseResult) -> Vec<Row> {
                 tolerance: tol,
                 pass: tol.map(|t| st.max_abs_dev <= t),
                 seconds: r.trace_seconds,
-                note: format!("max at {:.6e}", st.at),
+                note: match m.derived_tolerance(&r.rounding, 0.0) {
+                    // What the arithmetic allows (docs/PHYSICS.md §8): the fuzz gate's tolerance.
+                    Some(d) if *level == Fidelity::Vector => {
+                        format!("max at {:.6e}; the arithmetic allows {d:.1e}", st.at)
+                    }
+                    _ => format!("max at {:.6e}", st.at),
+                },
             });
         }
     }

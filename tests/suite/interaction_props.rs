@@ -47,6 +47,7 @@ fn make_ray(
         optical_path: fringe::double_double::DoubleDouble::ZERO,
         index,
         ledger: PhaseLedger::default(),
+        normal_q2: None,
     }
 }
 

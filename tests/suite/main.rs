@@ -29,6 +29,7 @@ mod material;
 mod output_safety;
 mod path_solver;
 mod pipeline_props;
+mod precision_classes;
 mod render;
 mod renderer_models;
 mod stability;

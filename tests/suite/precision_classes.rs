@@ -1,0 +1,176 @@
+//! Precision classes found by `fringe fuzz --family coherence_gaussian,airy --seed 7`
+//! (issue #12 item 3, issue #13): each shrunk scene in `tests/fuzz_found/fuzz_*_s7_*.json` is
+//! traced and compared, point by point, with a 50-digit evaluation of the same numbers
+//! (`tools/precision_classes_mpmath.py` → `tests/data/precision_classes_mpmath.csv`), not with
+//! the closed form the gate uses. Before the fixes each class was off by 1e-9 – 7.6e-3:
+//!
+//! * light leaving a film at near-grazing outside (or into a much lower index): the exit cosine
+//!   is a small difference of large squares, lost from an f64 direction; the tracer and the
+//!   path solver now carry (n cos θ)² in double-double between parallel faces
+//!   (`interaction::normal_wavevector_squares`, docs/PHYSICS.md §8);
+//! * a thick plate: the phase of a 10 m path difference at 200 nm in cycles, rounded to f64,
+//!   was ~1e-8 off; the fraction is now taken in double-double (`trace::contribution_from`);
+//! * a Gaussian-light thin plate far from the origin: the reference took the plate's thickness
+//!   from its faces' rounded points; it now reads the thickness as held, and forms the two-beam
+//!   sum without cancellation.
+
+use fringe::case::load;
+use fringe::case::run;
+use fringe::fidelity::Fidelity;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The 50-digit values by case name, in probe order.
+fn mpmath_values() -> BTreeMap<String, Vec<f64>> {
+    let text =
+        std::fs::read_to_string(root().join("tests/data/precision_classes_mpmath.csv")).unwrap();
+    let mut out: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let v = out.entry(f[0].to_string()).or_default();
+        assert_eq!(f[1].parse::<usize>().unwrap(), v.len(), "{line}");
+        v.push(f[2].parse().unwrap());
+    }
+    out
+}
+
+/// Largest relative deviation of the traced `vector` values of `name` from the 50-digit ones
+/// (relative to the largest 50-digit value of the profile, as the gate measures).
+fn traced_error(name: &str, truth: &[f64]) -> f64 {
+    let path = root().join(format!("tests/fuzz_found/{name}.json"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let case = load::parse(Path::new(&path), &text).expect("a valid case");
+    let r = run::run_with(&case, false).unwrap();
+    let traced = &r.metrics[0].traced[&Fidelity::Vector];
+    assert_eq!(traced.len(), truth.len(), "{name}: probe points");
+    let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+    traced
+        .iter()
+        .zip(truth)
+        .map(|(t, m)| (t - m).abs() / scale)
+        .fold(0.0, f64::max)
+}
+
+fn check(names: &[&str]) {
+    let truth = mpmath_values();
+    for name in names {
+        let e = traced_error(name, &truth[*name]);
+        println!("{name}: traced vs 50 digits {e:.3e}");
+        assert!(e <= 1e-12, "{name}: traced vs 50 digits {e:e} > 1e-12");
+    }
+}
+
+/// Near-grazing and low-index films (`_25`: ambient n = 0.001 at 89°, was 7.6e-3; `_31`:
+/// n = 0.158 at 89.984°, rotated, was 2.1e-5; `_40`: n = 0.0032, rotated, was 1.6e-8; `_46`:
+/// n = 1.1 at 89.999999°, was 1.7e-8): the exit cosine from the carried normal wavevector.
+#[test]
+fn a_film_left_at_grazing_or_into_a_thin_medium_keeps_its_exit_cosine() {
+    check(&[
+        "fuzz_airy_s7_25",
+        "fuzz_airy_s7_31",
+        "fuzz_airy_s7_40",
+        "fuzz_airy_s7_46",
+    ]);
+}
+
+/// A 25 cm plate in transmission at 200 nm (`_37`, ambient n = 10: 31 internal reflections,
+/// path differences up to ~11 m): the phase fraction in double-double (was 4.3e-9).
+#[test]
+fn a_thick_plate_keeps_the_phase_of_its_long_path_differences() {
+    check(&["fuzz_airy_s7_37"]);
+}
+
+/// A 1–2 nm plate 10 m from the origin under Gaussian light (`_87`, was 7.5e-8 against the
+/// closed form, which read the thickness from the faces' rounded points): the tracer to 1e-12
+/// of 50 digits, and the closed form too, now that it reads the thickness as held.
+#[test]
+fn a_thin_plate_far_out_is_judged_by_its_thickness_as_held() {
+    check(&["fuzz_coherence_gaussian_s7_87"]);
+    let truth = &mpmath_values()["fuzz_coherence_gaussian_s7_87"];
+    let path = root().join("tests/fuzz_found/fuzz_coherence_gaussian_s7_87.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let r = run::run_with(&load::parse(&path, &text).unwrap(), false).unwrap();
+    let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+    for (a, m) in r.metrics[0].analytic.iter().zip(truth) {
+        let e = (a - m).abs() / scale;
+        assert!(e <= 1e-14, "closed form vs 50 digits {e:e} > 1e-14");
+    }
+}
+
+fn run_file(path: &Path) -> run::CaseResult {
+    let text = std::fs::read_to_string(path).unwrap();
+    run::run_with(&load::parse(path, &text).expect("a valid case"), false).unwrap()
+}
+
+/// The derived tolerance (what the arithmetic allows, `conditioning::intensity_rounding`) of
+/// every intensity metric of the library is at most 1e-9 (docs/PHYSICS.md §8: measured 1.7e-30
+/// for Brewster's extinction … 2e-12 for the Michelson, 2.2e-10 for incoherent_sources'
+/// finite-difference spreading), and wherever the case's reference is exact at 1e-12 the tracer
+/// stays within max(derived, 1e-12), as the fuzz gate requires of a random scene.
+#[test]
+fn the_library_is_within_what_the_arithmetic_allows() {
+    for file in crate::support::library::case_files() {
+        let r = run_file(&file);
+        for m in &r.metrics {
+            let Some(derived) = m.derived_tolerance(&r.rounding, 0.0) else {
+                continue;
+            };
+            let Some(st) = m.stats(Fidelity::Vector) else {
+                continue;
+            };
+            println!(
+                "{} {}: derived {derived:.2e}, traced vs closed form {:.2e}",
+                r.name, m.name, st.max_abs_dev
+            );
+            // Library scale: never looser than 1e-9 (docs/PHYSICS.md §8).
+            assert!(
+                derived <= 1e-9,
+                "{} {}: derived {derived:e}",
+                r.name,
+                m.name
+            );
+            // Exact references at 1e-12 (the paraxial and small-angle ones keep their own
+            // terms; incoherent_sources its finite-difference spreading).
+            if m.tolerances
+                .get(&Fidelity::Vector)
+                .is_some_and(|t| *t <= 1e-12)
+            {
+                let allowed = derived.max(fringe::fuzz::DERIVED_FLOOR);
+                assert!(
+                    st.max_abs_dev <= allowed,
+                    "{} {}: {:e} > {allowed:e}",
+                    r.name,
+                    m.name,
+                    st.max_abs_dev
+                );
+            }
+        }
+    }
+}
+
+/// The bound grows with the path difference in wavelengths, as the phase's conditioning does:
+/// the 25 cm plate of `fuzz_airy_s7_37` (|ΔS|/λ up to ~5e7) allows far more than the library,
+/// three times the thickness about three times more — while the tracer is within 1e-12 of 50
+/// digits there (the bound is what the arithmetic *allows*, not what it does).
+#[test]
+fn the_derived_tolerance_follows_the_phase_conditioning() {
+    let path = root().join("tests/fuzz_found/fuzz_airy_s7_37.json");
+    let r = run_file(&path);
+    let d1 = r.metrics[0].derived_tolerance(&r.rounding, 0.0).unwrap();
+    let mut doc: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+    let plate = &mut doc["scene"]["surfaces"][0]["plate"]["thickness_um"];
+    *plate = serde_json::json!(plate.as_f64().unwrap() * 3.0);
+    let thick = load::parse(&path, &doc.to_string()).unwrap();
+    let r10 = run::run_with(&thick, false).unwrap();
+    let d10 = r10.metrics[0]
+        .derived_tolerance(&r10.rounding, 0.0)
+        .unwrap();
+    println!("25 cm plate: derived {d1:.2e}; 75 cm: {d10:.2e}");
+    assert!(d1 > 1e-10 && d1 < 1e-6, "{d1:e}");
+    assert!(d10 > 1.5 * d1 && d10 < 6.0 * d1, "{d1:e} → {d10:e}");
+}
