@@ -736,6 +736,10 @@ fn coordinate_floor(target: DVec3, points: &[DVec3]) -> f64 {
     COORDINATE_ULPS * f64::EPSILON * largest
 }
 
+/// The smallest finite-difference step of the solver's Jacobian, relative to the launch
+/// model's step (`LaunchModel::step`): 1e-6 of the scene scale shrunk by at most 1e-9.
+const JACOBIAN_STEP_FLOOR: f64 = 1e-9;
+
 /// Roundings of the largest coordinate a landing error may carry ([`coordinate_floor`]).
 const COORDINATE_ULPS: f64 = 32.0;
 
@@ -927,16 +931,28 @@ pub fn solve(
         Target::Direction { .. } => 1e-13,
     };
     let h = model.step(scale);
+    // Central differences; where a step leaves the region the sequence can be traced in (a
+    // wedge's hinge 60 nm from a plane wave's path, a bounded surface's edge, TIR), the step
+    // shrinks by 16 until both sides trace: the scene scale (up to the distance of a plane
+    // wave's reference point) says nothing about how far the path's features are.
     let jacobian = |p: [f64; 2], g: &mut Geometry| -> Option<[[f64; 2]; 2]> {
         let mut j = [[0.0; 2]; 2];
         for k in 0..2 {
-            let mut pp = p;
-            let mut pm = p;
-            pp[k] += h[k];
-            pm[k] -= h[k];
-            let (rp, rm) = (res(pp, g)?, res(pm, g)?);
+            let mut hk = h[k];
+            let (rp, rm) = loop {
+                let (mut pp, mut pm) = (p, p);
+                pp[k] += hk;
+                pm[k] -= hk;
+                if let (Some(rp), Some(rm)) = (res(pp, g), res(pm, g)) {
+                    break (rp, rm);
+                }
+                hk /= 16.0;
+                if hk < JACOBIAN_STEP_FLOOR * h[k] {
+                    return None;
+                }
+            };
             for i in 0..2 {
-                j[i][k] = (rp[i] - rm[i]) / (2.0 * h[k]);
+                j[i][k] = (rp[i] - rm[i]) / (2.0 * hk);
             }
         }
         Some(j)
