@@ -899,6 +899,33 @@ pub fn solve(
             }
         }
     }
+    // A plane wave toward a point: the image method's launch line ignores refraction too, and
+    // through a thin wedge it can start where the sequence cannot be followed (beyond the
+    // hinge, the bottom face lies above the top one: `Missed`). Slide the launch line from the
+    // image's toward the target's own (the path of a wave that is not deviated at all) until
+    // the sequence traces.
+    if let (None, Some(_), Emitter::PlaneWave { .. }, Target::Point(p)) =
+        (&start, seq.first(), emitter, target)
+    {
+        let offset = guess_origin - p;
+        // The image's line first, then halfway to the target's, ..., then the target's.
+        for k in 0..=65 {
+            let towards = if k == 65 { 0.0 } else { 0.5f64.powi(k) };
+            let m = LaunchModel::new(emitter, guess_dir, p + towards * offset);
+            let (o, d) = m.launch([0.0, 0.0]);
+            match trace_planes(scene, optics, o, d, seq, &mut g0) {
+                Ok(()) => {
+                    start = Some(m);
+                    break;
+                }
+                // Wrong side of the first plane, or an opaque event: no launch line helps.
+                Err(PathError::MediumMismatch { event: 0 } | PathError::OpaqueEvent { .. }) => {
+                    break;
+                }
+                Err(_) => {}
+            }
+        }
+    }
     let model = match start {
         Some(m) => m,
         None => {
