@@ -95,6 +95,14 @@ pub enum PathError {
     },
     #[error("surface {surface} is opaque and cannot be an event")]
     OpaqueEvent { surface: usize },
+    /// The solved path refracts at event `event` at the critical angle to within rounding, and
+    /// the ray carried along it, a rounding away, is totally reflected there: the refracted
+    /// wave would graze the surface, and which side of the critical angle the path lies on is
+    /// decided by rounding. The sequence is reported as not arriving (`trace::carry`).
+    #[error(
+        "refraction at the critical angle to within rounding at event {event}: the ray is totally reflected there a rounding away from the solved path"
+    )]
+    CriticalAngle { event: usize },
 }
 
 /// Solver settings.
