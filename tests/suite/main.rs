@@ -36,5 +36,6 @@ mod stability_report;
 mod tradeoff;
 mod trail;
 mod truth;
+mod truth_geometry;
 mod unpolarized;
 mod young_two_point;
