@@ -748,6 +748,10 @@ fn coordinate_floor(target: DVec3, points: &[DVec3]) -> f64 {
 /// model's step (`LaunchModel::step`): 1e-6 of the scene scale shrunk by at most 1e-9.
 const JACOBIAN_STEP_FLOOR: f64 = 1e-9;
 
+/// How often a plane wave's launch line toward a point target is halved toward the target's own
+/// line before that line itself is tried (`solve`): 2^-24 of the image method's offset, ~6e-8.
+const SLIDE_STEPS: i32 = 24;
+
 /// Roundings of the largest coordinate a landing error may carry ([`coordinate_floor`]).
 const COORDINATE_ULPS: f64 = 32.0;
 
@@ -917,8 +921,12 @@ pub fn solve(
     {
         let offset = guess_origin - p;
         // The image's line first, then halfway to the target's, ..., then the target's.
-        for k in 0..=65 {
-            let towards = if k == 65 { 0.0 } else { 0.5f64.powi(k) };
+        for k in 0..=SLIDE_STEPS {
+            let towards = if k == SLIDE_STEPS {
+                0.0
+            } else {
+                0.5f64.powi(k)
+            };
             let m = LaunchModel::new(emitter, guess_dir, p + towards * offset);
             let (o, d) = m.launch([0.0, 0.0]);
             match trace_planes(scene, optics, o, d, seq, &mut g0) {
