@@ -472,7 +472,8 @@ impl ChannelRays {
 }
 
 /// The rays of every channel of a source carried along a solved path ([`ChannelRays`]), up to
-/// the last event.
+/// the last event; [`PathError::CriticalAngle`] where the rays cannot follow one of its
+/// refractions (the path refracts at the critical angle to within rounding).
 #[inline]
 fn carry(
     scene: &Scene,
@@ -481,7 +482,7 @@ fn carry(
     coherence_length_m: f64,
     path: &SolvedPath,
     model: CoefficientModel,
-) -> ChannelRays {
+) -> Result<ChannelRays, PathError> {
     let capacity = ledger_capacity(path);
     let mut rays = ChannelRays::launch(
         optics,
@@ -492,12 +493,13 @@ fn carry(
         || Trail::with_capacity(capacity),
     );
     let others = channels.len().saturating_sub(1);
-    for (ev, point) in events_of(path) {
+    for (event, (ev, point)) in events_of(path).enumerate() {
         let hit = hit_at(scene, optics, ev, point);
-        let ok = rays.interact(scene, (ev, &hit), model, others);
-        assert!(ok, "{NO_REFRACTED_RAY}");
+        if !rays.interact(scene, (ev, &hit), model, others) {
+            return Err(PathError::CriticalAngle { event });
+        }
     }
-    rays
+    Ok(rays)
 }
 
 /// The panic message of a solved path whose refraction the ray cannot follow.
@@ -506,6 +508,11 @@ const NO_REFRACTED_RAY: &str = "solved paths only refract where a refracted ray 
 /// [`propagate`] for every channel of a source along one path, in one pass (`ChannelRays`).
 /// `emit(k, ray)` receives channel k's ray, in order; each is bitwise the ray [`propagate`]
 /// gives that channel.
+///
+/// # Panics
+///
+/// Where the rays cannot follow one of the path's refractions ([`PathError::CriticalAngle`];
+/// [`arrivals`] reports such a sequence as failed instead).
 #[allow(clippy::too_many_arguments)]
 pub fn propagate_channels(
     scene: &Scene,
@@ -517,12 +524,9 @@ pub fn propagate_channels(
     model: CoefficientModel,
     emit: impl FnMut(usize, Ray),
 ) {
-    carry(scene, optics, channels, coherence_length_m, path, model).emit(
-        channels,
-        target,
-        coherence_length_m,
-        emit,
-    );
+    carry(scene, optics, channels, coherence_length_m, path, model)
+        .expect(NO_REFRACTED_RAY)
+        .emit(channels, target, coherence_length_m, emit);
 }
 
 /// Every ray reaching `target`, and every candidate sequence that did not.
@@ -585,14 +589,18 @@ pub fn arrivals_with(
             if out.failed.is_none() && path::cannot_reach(scene, src.emitter, seq, target) {
                 return;
             }
-            match path::solve(scene, optics, src.emitter, seq, *target, &settings.solve) {
-                Ok(p) => {
+            let carried = path::solve(scene, optics, src.emitter, seq, *target, &settings.solve)
+                .and_then(|p| {
                     let along =
                         |model| carry(scene, optics, &channels, src.coherence_length_m, &p, model);
-                    let vector = along(CoefficientModel::Vector);
-                    let paper = paper_rules.then(|| along(CoefficientModel::PaperRules));
-                    out.arrive(Arc::new(p), vector, paper);
-                }
+                    let vector = along(CoefficientModel::Vector)?;
+                    let paper = paper_rules
+                        .then(|| along(CoefficientModel::PaperRules))
+                        .transpose()?;
+                    Ok((p, vector, paper))
+                });
+            match carried {
+                Ok((p, vector, paper)) => out.arrive(Arc::new(p), vector, paper),
                 Err(error) => out.fail(Trail::from(seq.to_vec()), error),
             }
         });
@@ -712,22 +720,34 @@ fn far_field_walk(
         if node.candidate {
             match paths.path(out.target) {
                 Ok(p) => {
-                    // Carry the rays through the events they have not met yet.
+                    // Carry the rays through the events they have not met yet; where they
+                    // cannot follow a refraction (the critical angle to within rounding), the
+                    // stack keeps what was carried and the sequence fails as `carry` fails it.
+                    let mut stopped = None;
                     for (stack, &model) in rays.iter_mut().zip(models) {
                         stack.truncate(valid);
                         for k in valid..=node.depth {
                             let (ev, point) = paths.event(k - 1);
                             let mut next = stack[k - 1].clone();
                             let hit = hit_at(scene, optics, ev, point);
-                            let ok = next.interact(scene, (ev, &hit), model, others);
-                            assert!(ok, "{NO_REFRACTED_RAY}");
+                            if !next.interact(scene, (ev, &hit), model, others) {
+                                stopped = Some(k - 1);
+                                break;
+                            }
                             stack.push(next);
                         }
+                        if stopped.is_some() {
+                            break;
+                        }
                     }
-                    valid = node.depth + 1;
-                    let mut at_end = rays.iter().map(|stack| stack[node.depth].clone());
-                    let vector = at_end.next().unwrap();
-                    out.arrive(Arc::new(p), vector, at_end.next());
+                    if let Some(event) = stopped {
+                        out.fail(paths.sequence(), PathError::CriticalAngle { event });
+                    } else {
+                        valid = node.depth + 1;
+                        let mut at_end = rays.iter().map(|stack| stack[node.depth].clone());
+                        let vector = at_end.next().unwrap();
+                        out.arrive(Arc::new(p), vector, at_end.next());
+                    }
                 }
                 Err(error) => out.fail(paths.sequence(), error),
             }

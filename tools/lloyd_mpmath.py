@@ -53,34 +53,39 @@ def intensity(s, a, q, n, p, n1, n2, lam):
     return abs(1 + rs * mp.expjpi(2 * N1 * (ri - rd) / LAM)) ** 2
 
 
-print("sx,sy,sz,ax,ay,az,qx,qy,qz,nx,ny,nz,px,py,pz,n1,n2,lambda_m,intensity")
-for k in range(60):
-    lam = rng.choice([200e-9, 400e-9, 550e-9, 633e-9, 1064e-9])
-    n1 = rng.choice([1.0, 1.0, 1.333, 1.5, 2.4])
-    rarer = k % 3 == 2
-    n2 = n1 * rng.choice([0.6, 0.9, 0.999]) if rarer else n1 * rng.choice([1.2, 1.5, 2.0])
-    h = 10 ** rng.uniform(-6, -1)
-    L = 10 ** rng.uniform(-3, 1)
-    # Screen heights: the m-th dark fringe of r_s ~ -1 (2 h y/L ~ m lam/n1), a small shift off
-    # it, on the mirror plane and just above it (grazing).
-    kind = k % 5
-    if kind == 3:
-        y = 0.0
-    elif kind == 4:
-        y = L * 10 ** rng.uniform(-9, -4)
-    else:
-        m = rng.randint(1, 200)
-        y = m * lam * L / (2 * h * n1) * (1 + rng.choice([0.0, 1e-9, -1e-7, 1e-5]))
-        y = min(y, 10 * L)
-    R = rotation(rng) if k % 4 else [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
-    off = [rng.uniform(-10, 10) for _ in range(3)] if k % 2 else [0.0, 0.0, 0.0]
-    # Local frame: mirror z = 0, normal +z, source axis along y, screen at x = L.
-    loc = lambda v: [o + c for o, c in zip(off, apply(R, v))]
-    s = loc([0.0, 0.0, h])
-    q = loc([rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0]) if k % 6 == 1 else loc([0.0, 0.0, 0.0])
-    p = loc([L, rng.uniform(-0.01, 0.01), y])
-    a = apply(R, [0.0, 1.0, 0.0])
-    n = apply(R, [0.0, 0.0, 1.0 if k % 7 else -1.0])
-    I = intensity(s, a, q, n, p, n1, n2, lam)
-    vals = [*s, *a, *q, *n, *p, n1, n2, lam]
-    print(",".join(repr(float(v)) for v in vals) + "," + mp.nstr(I, 30))
+def main():
+    print("sx,sy,sz,ax,ay,az,qx,qy,qz,nx,ny,nz,px,py,pz,n1,n2,lambda_m,intensity")
+    for k in range(60):
+        lam = rng.choice([200e-9, 400e-9, 550e-9, 633e-9, 1064e-9])
+        n1 = rng.choice([1.0, 1.0, 1.333, 1.5, 2.4])
+        rarer = k % 3 == 2
+        n2 = n1 * rng.choice([0.6, 0.9, 0.999]) if rarer else n1 * rng.choice([1.2, 1.5, 2.0])
+        h = 10 ** rng.uniform(-6, -1)
+        L = 10 ** rng.uniform(-3, 1)
+        # Screen heights: the m-th dark fringe of r_s ~ -1 (2 h y/L ~ m lam/n1), a small shift off
+        # it, on the mirror plane and just above it (grazing).
+        kind = k % 5
+        if kind == 3:
+            y = 0.0
+        elif kind == 4:
+            y = L * 10 ** rng.uniform(-9, -4)
+        else:
+            m = rng.randint(1, 200)
+            y = m * lam * L / (2 * h * n1) * (1 + rng.choice([0.0, 1e-9, -1e-7, 1e-5]))
+            y = min(y, 10 * L)
+        R = rotation(rng) if k % 4 else [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+        off = [rng.uniform(-10, 10) for _ in range(3)] if k % 2 else [0.0, 0.0, 0.0]
+        # Local frame: mirror z = 0, normal +z, source axis along y, screen at x = L.
+        loc = lambda v: [o + c for o, c in zip(off, apply(R, v))]
+        s = loc([0.0, 0.0, h])
+        q = loc([rng.uniform(-1, 1), rng.uniform(-1, 1), 0.0]) if k % 6 == 1 else loc([0.0, 0.0, 0.0])
+        p = loc([L, rng.uniform(-0.01, 0.01), y])
+        a = apply(R, [0.0, 1.0, 0.0])
+        n = apply(R, [0.0, 0.0, 1.0 if k % 7 else -1.0])
+        I = intensity(s, a, q, n, p, n1, n2, lam)
+        vals = [*s, *a, *q, *n, *p, n1, n2, lam]
+        print(",".join(repr(float(v)) for v in vals) + "," + mp.nstr(I, 30))
+
+
+if __name__ == "__main__":
+    main()

@@ -94,39 +94,44 @@ def local_opd(x, n1, n, a, t0, ho):
     return n * D * (1 + 1 / math.cos(2 * a)) + n1 * ho * (1 / math.cos(psi) - 1)
 
 
-print("qtx,qty,qtz,ntx,nty,ntz,qbx,qby,qbz,nbx,nby,nbz,px,py,pz,n1,n,n3,lambda_m,intensity")
-rows = 0
-while rows < 48:
-    lam = rng.choice([200e-9, 400e-9, 550e-9, 633e-9, 1064e-9])
-    n1 = rng.choice([1.0, 1.0, 1.333, 1.5])
-    n = rng.choice([1.45, 1.5, 1.7, 2.4])
-    n3 = rng.choice([n1, n1, 1.0, 1.333, 1.9])
-    a = math.radians(10 ** rng.uniform(-5, 1))
-    t0 = 10 ** rng.uniform(-6, -3)
-    ho = 10 ** rng.uniform(-4, 0)
-    if n * math.sin(2 * a) >= 0.95 * n1:
-        continue
-    # A dark fringe: |a1 + a2 e^{i d}| smallest where d = arg a1 - arg a2 + pi (mod 2 pi).
-    psi = math.asin(n * math.sin(2 * a) / n1)
-    xmax = t0 / math.tan(a) * 0.9 + ho * math.tan(psi)
-    x = rng.uniform(-0.5, 1) * min(xmax, 0.1)
-    if rng.random() < 0.7:
-        slope = (local_opd(x + 1e-9, n1, n, a, t0, ho) - local_opd(x - 1e-9, n1, n, a, t0, ho)) / 2e-9
-        c = local_opd(x, n1, n, a, t0, ho) / lam
-        target = math.floor(c) + 0.5 + rng.choice([0.0, 0.25])
-        if slope != 0:
-            x += (target - c) * lam / slope * (1 + rng.choice([0.0, 1e-9, -1e-6]))
-    R = rotation(rng) if rows % 4 else [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
-    off = [rng.uniform(-10, 10) for _ in range(3)] if rows % 2 else [0.0, 0.0, 0.0]
-    loc = lambda v: [o + c for o, c in zip(off, apply(R, v))]
-    # Local frame: top face z = 0 normal +z, hinge along y, bottom normal (sin a, 0, cos a)
-    # through (0, 0, -t0), as the scene builder makes it (the bottom point rounded anew).
-    qt = loc([0.0, 0.0, 0.0])
-    nt = apply(R, [0.0, 0.0, 1.0])
-    qb = loc([0.0, 0.0, -t0])
-    nb = apply(R, [math.sin(a), 0.0, math.cos(a)])
-    p = loc([x, rng.uniform(-0.01, 0.01), ho])
-    I = intensity(qt, nt, qb, nb, p, n1, n, n3, lam)
-    vals = [*qt, *nt, *qb, *nb, *p, n1, n, n3, lam]
-    print(",".join(repr(float(v)) for v in vals) + "," + mp.nstr(I, 30))
-    rows += 1
+def main():
+    print("qtx,qty,qtz,ntx,nty,ntz,qbx,qby,qbz,nbx,nby,nbz,px,py,pz,n1,n,n3,lambda_m,intensity")
+    rows = 0
+    while rows < 48:
+        lam = rng.choice([200e-9, 400e-9, 550e-9, 633e-9, 1064e-9])
+        n1 = rng.choice([1.0, 1.0, 1.333, 1.5])
+        n = rng.choice([1.45, 1.5, 1.7, 2.4])
+        n3 = rng.choice([n1, n1, 1.0, 1.333, 1.9])
+        a = math.radians(10 ** rng.uniform(-5, 1))
+        t0 = 10 ** rng.uniform(-6, -3)
+        ho = 10 ** rng.uniform(-4, 0)
+        if n * math.sin(2 * a) >= 0.95 * n1:
+            continue
+        # A dark fringe: |a1 + a2 e^{i d}| smallest where d = arg a1 - arg a2 + pi (mod 2 pi).
+        psi = math.asin(n * math.sin(2 * a) / n1)
+        xmax = t0 / math.tan(a) * 0.9 + ho * math.tan(psi)
+        x = rng.uniform(-0.5, 1) * min(xmax, 0.1)
+        if rng.random() < 0.7:
+            slope = (local_opd(x + 1e-9, n1, n, a, t0, ho) - local_opd(x - 1e-9, n1, n, a, t0, ho)) / 2e-9
+            c = local_opd(x, n1, n, a, t0, ho) / lam
+            target = math.floor(c) + 0.5 + rng.choice([0.0, 0.25])
+            if slope != 0:
+                x += (target - c) * lam / slope * (1 + rng.choice([0.0, 1e-9, -1e-6]))
+        R = rotation(rng) if rows % 4 else [[1, 0, 0], [0, 1, 0], [0, 0, 1]]
+        off = [rng.uniform(-10, 10) for _ in range(3)] if rows % 2 else [0.0, 0.0, 0.0]
+        loc = lambda v: [o + c for o, c in zip(off, apply(R, v))]
+        # Local frame: top face z = 0 normal +z, hinge along y, bottom normal (sin a, 0, cos a)
+        # through (0, 0, -t0), as the scene builder makes it (the bottom point rounded anew).
+        qt = loc([0.0, 0.0, 0.0])
+        nt = apply(R, [0.0, 0.0, 1.0])
+        qb = loc([0.0, 0.0, -t0])
+        nb = apply(R, [math.sin(a), 0.0, math.cos(a)])
+        p = loc([x, rng.uniform(-0.01, 0.01), ho])
+        I = intensity(qt, nt, qb, nb, p, n1, n, n3, lam)
+        vals = [*qt, *nt, *qb, *nb, *p, n1, n, n3, lam]
+        print(",".join(repr(float(v)) for v in vals) + "," + mp.nstr(I, 30))
+        rows += 1
+
+
+if __name__ == "__main__":
+    main()

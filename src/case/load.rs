@@ -1028,7 +1028,74 @@ impl Validator {
                 return;
             }
         }
-        // Unbounded faces only: beside a bounded surface's edge its plane is free space.
+        // A bounded surface: a probe point in its plane and on its rectangle, or within
+        // 1e-12 of the scene's scale of its edge, is on the surface (refused as on an unbounded
+        // one: which rays reach it, the direct one blocked or not and the reflected one
+        // reflecting at the point itself, would be decided by rounding). Beside the rectangle
+        // the plane is free space: a point there sees the rays that reach it without touching
+        // the surface (a ray reflected by the surface would reflect at the point itself, off
+        // the surface), docs/PHYSICS.md §8.
+        for surf in &c.scene.surfaces {
+            let (point_m, normal, rect) = match surf {
+                SurfaceSpec::Interface {
+                    point_m,
+                    normal,
+                    rect: Some(rect),
+                    ..
+                }
+                | SurfaceSpec::Mirror {
+                    point_m,
+                    normal,
+                    rect: Some(rect),
+                    ..
+                }
+                | SurfaceSpec::Splitter {
+                    point_m,
+                    normal,
+                    rect: Some(rect),
+                    ..
+                }
+                | SurfaceSpec::OpaqueScreen {
+                    point_m,
+                    normal,
+                    rect: Some(rect),
+                    ..
+                }
+                | SurfaceSpec::Shield {
+                    point_m,
+                    normal,
+                    rect,
+                    ..
+                } => (point_m, normal, rect),
+                _ => continue,
+            };
+            let Some(n) = unit(normal) else { continue };
+            let plane = crate::geometry::Plane::new(DVec3::from_array(*point_m), n);
+            let (u, v) = plane.axes(DVec3::from_array(rect.u_axis));
+            let on_it = |p: &DVec3| {
+                let scale = plane.point.length().max(p.length()).max(1.0);
+                let margin = 1e-12 * scale;
+                let d = *p - plane.point;
+                d.dot(plane.normal).abs() <= margin
+                    && d.dot(u).abs() <= 0.5 * rect.size_m[0] + margin
+                    && d.dot(v).abs() <= 0.5 * rect.size_m[1] + margin
+            };
+            if let Some(p) = points.iter().find(|p| on_it(p)) {
+                self.fail(
+                    key,
+                    format!(
+                        "a probe point ({}, {}, {}) lies on {} {:?} (in its plane, on its rectangle or within 1e-12 of the scene's scale of its edge): a detector on a surface has no side; move the probe off the surface, or beside its rectangle",
+                        num(p.x),
+                        num(p.y),
+                        num(p.z),
+                        surf.kind(),
+                        surf.name()
+                    ),
+                );
+                return;
+            }
+        }
+        // Unbounded faces: anywhere in their planes.
         let bounded = |x: &SurfaceSpec| match x {
             SurfaceSpec::Interface { rect, .. }
             | SurfaceSpec::Mirror { rect, .. }

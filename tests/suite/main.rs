@@ -38,5 +38,6 @@ mod tradeoff;
 mod trail;
 mod truth;
 mod truth_plates;
+mod truth_geometry;
 mod unpolarized;
 mod young_two_point;
