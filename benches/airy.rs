@@ -28,11 +28,11 @@ mod airy_plate;
 
 use airy_plate::{airy_plate, airy_plate_of};
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use fringe::analytic::plate::{Film, Pol};
-use fringe::beats::{Beats, vector_rays};
-use fringe::material::{Dispersion, Medium};
-use fringe::path::{EnumerationLimits, Target};
+use fringe::harness::analytic::plate::{Film, Pol};
+use fringe::optics::material::{Dispersion, Medium};
 use fringe::scene::Scene;
+use fringe::trace::beats::{Beats, vector_rays};
+use fringe::trace::path::{EnumerationLimits, Target};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
 use std::hint::black_box;
@@ -189,7 +189,7 @@ fn bench_spectrum(c: &mut Criterion) {
                 let optics = scene.optics(l).expect("indices");
                 let plan = trace::plan(scene, &optics, &[DVec3::new(0.0, 0.0, 0.001)], &st.limits);
                 let arr = trace::arrivals(scene, &optics, &plan, target, st).0;
-                trace::intensity(&arr, fringe::fidelity::Fidelity::Vector)
+                trace::intensity(&arr, fringe::accumulate::fidelity::Fidelity::Vector)
             })
             .sum()
     };

@@ -1,11 +1,11 @@
-//! Complex Fresnel coefficients (P1–P6) per second: `fringe::fresnel::fresnel` over a sweep of
+//! Complex Fresnel coefficients (P1–P6) per second: `fringe::optics::fresnel::fresnel` over a sweep of
 //! incidence angles, outside TIR (air → glass), fully inside TIR (glass → air beyond the
 //! critical angle) and a 0–90° sweep from glass that crosses the critical angle.
 //!
 //! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench --bench fresnel`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use fringe::fresnel::{critical_angle, fresnel};
+use fringe::optics::fresnel::{critical_angle, fresnel};
 use std::hint::black_box;
 use std::time::Duration;
 

@@ -1,4 +1,4 @@
-//! Exact point-to-point paths per second (`fringe::path::solve`) through a plane-parallel
+//! Exact point-to-point paths per second (`fringe::trace::path::solve`) through a plane-parallel
 //! plate (n = 1.5, 1 mm, in air) from a point source 10 cm above it to screen points 10 cm
 //! above it, along `[T top, R bottom, (R top, R bottom)^(k−1), T top]` for k = 1, 3, 9 bottom
 //! reflections (2k − 1 internal reflections, 2k + 1 events). Each iteration solves the path to
@@ -7,10 +7,10 @@
 //! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench --bench path`
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
-use fringe::material::Medium;
-use fringe::path::{Event, EventKind, SolveOptions, Target, solve};
+use fringe::optics::material::Medium;
 use fringe::scene::Scene;
-use fringe::source::{Emitter, Polarization, Source};
+use fringe::scene::source::{Emitter, Polarization, Source};
+use fringe::trace::path::{Event, EventKind, SolveOptions, Target, solve};
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Duration;

@@ -1,17 +1,17 @@
-//! Whole cases per second: the case runner (`fringe::case::run::run_with`, every fidelity level
+//! Whole cases per second: the case runner (`fringe::harness::case::run::run_with`, every fidelity level
 //! from one set of exact paths) on the paper's amplitude-division scene, Young's experiment
 //! and the Airy plate (bounce count chosen from the tail bound). Throughput is in probe points.
-//! And the picture of the performance target: `fringe::render::render` of the amplitude-division
+//! And the picture of the performance target: `fringe::output::render::render` of the amplitude-division
 //! scene (`figures/plate_amplitude_division.json`) at `vector` fidelity in white light with 81
 //! wavelengths, 300 × 300 pixels (throughput in pixels; the 900 × 900 target is 9× the work).
 //!
 //! Run: `cargo bench --bench render`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
-use fringe::case::{build, load, run};
-use fringe::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
-use fringe::fidelity::Fidelity;
-use fringe::render::{self, Request, Screen, Shading, Spectrum};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::{build, load, run};
+use fringe::output::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
+use fringe::output::render::{self, Request, Screen, Shading, Spectrum};
 use std::hint::black_box;
 use std::path::Path;
 use std::time::Duration;

@@ -19,7 +19,7 @@
 //! * **s/p frames**: at an interface with unit normal N and incident direction d_i,
 //!   s = normalize(d_i × N) and p = d × s for each ray d, so (s, p, d) is right-handed; fields
 //!   are complex 3D vectors E = a_s s + a_p p. The Fresnel coefficients (P1)–(P4) and the TIR
-//!   phases (P5), (P6) are in this frame ([`fresnel`]).
+//!   phases (P5), (P6) are in this frame ([`optics::fresnel`]).
 //! * **Observables**: a screen point reports the field intensity |E|² summed over coherence
 //!   groups (in units of the source's |E|²); a far-field probe of a plane wave reports the power
 //!   reflectance or transmittance R, T (docs/PHYSICS.md §3a).
@@ -29,25 +29,25 @@
 //!
 //! One direction, each stage using only the ones before it:
 //!
-//! 1. **Scene** ([`scene::Scene`]): an ambient [`material::Medium`], planar surfaces
+//! 1. **Scene** ([`scene::Scene`]): an ambient [`optics::material::Medium`], planar surfaces
 //!    (interfaces, plates, wedges, mirrors, splitters, shields) and sources.
-//! 2. **Sources** ([`source::Source`]): point, line or plane-wave emitters, linearly polarized
+//! 2. **Sources** ([`scene::source::Source`]): point, line or plane-wave emitters, linearly polarized
 //!    or unpolarized (basis-free: three mutually incoherent dipole channels along x, y, z; or
 //!    the paper's two channels from a reference), grouped by coherence.
-//! 3. **Exact paths** ([`trace::plan`], [`trace::arrivals`], [`path`]): the candidate surface
+//! 3. **Exact paths** ([`trace::plan`], [`trace::arrivals`], [`trace::path`]): the candidate surface
 //!    sequences of each source are discovered once per scene; for each observation point (or
 //!    far-field direction) every sequence is solved exactly, and each source channel's ray is
-//!    propagated along it through the real interactions ([`interaction`]) into an
+//!    propagated along it through the real interactions ([`optics::interaction`]) into an
 //!    [`trace::Arrival`] — under complex Fresnel and, alongside, the paper's rules.
 //! 4. **Accumulation** ([`accumulate`]): each arrival becomes a [`accumulate::Contribution`] at
-//!    a rung of the [`fidelity::Fidelity`] ladder ([`trace::contributions`]); contributions are
+//!    a rung of the [`accumulate::fidelity::Fidelity`] ladder ([`trace::contributions`]); contributions are
 //!    grouped by coherence id, fields summed with their path phasors, groups added in intensity
-//!    (the paper's eqs. 5–6). [`fidelity::auto_select`] names the cheapest exact rung.
-//! 5. **Observables** ([`observable`]): |E|² at a point, R or T in the far field, and
+//!    (the paper's eqs. 5–6). [`accumulate::fidelity::auto_select`] names the cheapest exact rung.
+//! 5. **Observables** ([`optics::observable`]): |E|² at a point, R or T in the far field, and
 //!    quantities derived from them (retardance, fringe spacing, visibility).
-//! 6. **Comparison** ([`analytic`], [`case`], [`check`]): closed forms evaluated independently
+//! 6. **Comparison** ([`harness::analytic`], [`harness::case`], [`harness::check`]): closed forms evaluated independently
 //!    of the tracer, case files that pair a scene with its closed forms and tolerances, and the
-//!    gate `fringe check` with its reports ([`report`]).
+//!    gate `fringe check` with its reports ([`output::report`]).
 //!
 //! # Example: a glass plate against the Airy formula
 //!
@@ -59,12 +59,12 @@
 //!
 //! ```
 //! use fringe::accumulate::Accumulator;
-//! use fringe::analytic::plate::{Film, Pol};
-//! use fringe::fidelity::{self, Fidelity};
-//! use fringe::material::Medium;
-//! use fringe::path::Target;
+//! use fringe::harness::analytic::plate::{Film, Pol};
+//! use fringe::accumulate::fidelity::{self, Fidelity};
+//! use fringe::optics::material::Medium;
+//! use fringe::trace::path::Target;
 //! use fringe::scene::Scene;
-//! use fringe::source::{Emitter, Polarization, Source};
+//! use fringe::scene::source::{Emitter, Polarization, Source};
 //! use fringe::trace::{self, TraceSettings};
 //! use glam::DVec3;
 //!
@@ -133,7 +133,7 @@
 //! `fringe::Source`, `fringe::Medium`, `fringe::Accumulator`, `fringe::Fidelity`, …).
 //!
 //! The same flow runs from a case file with `fringe check` (see `cases/README.md`), which
-//! builds the scene ([`case::build`]), traces every probe point ([`case::run`]) and compares
+//! builds the scene ([`harness::case::build`]), traces every probe point ([`harness::case::run`]) and compares
 //! with the references named in the file.
 
 #![warn(missing_docs)]
@@ -145,53 +145,18 @@
 // stable API; what neither needs is private.
 
 // What an embedding renderer needs most, at the crate root (the modules hold the rest).
+pub use crate::accumulate::fidelity::{AutoChoice, Fidelity};
 pub use crate::accumulate::{Accumulator, Contribution};
-pub use crate::analytic::plate::{Film, Pol};
-pub use crate::fidelity::{AutoChoice, Fidelity};
-pub use crate::material::{Dispersion, Medium};
-pub use crate::path::Target;
+pub use crate::harness::analytic::plate::{Film, Pol};
+pub use crate::optics::material::{Dispersion, Medium};
+pub use crate::scene::source::{Emitter, Polarization, Source};
 pub use crate::scene::{Scene, SceneOptics};
-pub use crate::source::{Emitter, Polarization, Source};
+pub use crate::trace::path::Target;
 pub use crate::trace::{Arrival, TraceSettings};
 
 pub mod accumulate;
-pub mod analytic;
-pub mod beats;
-pub mod case;
-#[doc(hidden)]
-pub mod check;
-pub mod colour;
-pub mod conditioning;
-pub mod double_double;
-pub mod fidelity;
-#[doc(hidden)]
-pub mod figures;
-pub mod forward;
-#[doc(hidden)]
-pub mod forward_study;
-pub mod fresnel;
-#[doc(hidden)]
-pub mod fuzz;
-pub mod geometry;
-#[doc(hidden)]
-pub mod grade;
-pub mod interaction;
-pub mod material;
-mod memory;
-pub mod observable;
-pub mod path;
-pub mod ray;
-pub mod render;
-#[doc(hidden)]
-pub mod renderer_models;
-#[doc(hidden)]
-pub mod report;
+pub mod harness;
+pub mod optics;
+pub mod output;
 pub mod scene;
-pub mod sequence_tree;
-pub mod source;
-#[doc(hidden)]
-pub mod stability;
 pub mod trace;
-#[doc(hidden)]
-pub mod tradeoff;
-pub mod trail;

@@ -1,7 +1,7 @@
 //! The `fringe` command line: `check` (the CI correctness gate).
 
 use clap::{Parser, Subcommand, ValueEnum};
-use fringe::check::{self, CheckOptions, Format};
+use fringe::harness::check::{self, CheckOptions, Format};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
@@ -80,10 +80,10 @@ enum IlluminantArg {
 }
 
 impl IlluminantArg {
-    fn get(self) -> fringe::colour::Illuminant {
+    fn get(self) -> fringe::output::colour::Illuminant {
         match self {
-            IlluminantArg::D65 => fringe::colour::Illuminant::D65,
-            IlluminantArg::E => fringe::colour::Illuminant::E,
+            IlluminantArg::D65 => fringe::output::colour::Illuminant::D65,
+            IlluminantArg::E => fringe::output::colour::Illuminant::E,
         }
     }
 }
@@ -349,7 +349,11 @@ fn run_cli() -> ExitCode {
             cases,
             out,
             cases_dir,
-        } => match fringe::grade::export::export(&cases, &cases_dir_or_default(cases_dir), &out) {
+        } => match fringe::harness::grade::export::export(
+            &cases,
+            &cases_dir_or_default(cases_dir),
+            &out,
+        ) {
             Ok(lines) => {
                 for l in lines {
                     outln!("{l}");
@@ -378,10 +382,10 @@ fn run_cli() -> ExitCode {
         ),
         Command::List { cases_dir } => list_command(&cases_dir_or_default(cases_dir)),
         Command::Schema => {
-            out!("{}", fringe::case::schema::case_schema_text());
+            out!("{}", fringe::harness::case::schema::case_schema_text());
             ExitCode::SUCCESS
         }
-        Command::Models { out } => match fringe::renderer_models::study::write(&out) {
+        Command::Models { out } => match fringe::harness::renderer_models::study::write(&out) {
             Ok(table) => {
                 out!("{table}");
                 ExitCode::SUCCESS
@@ -401,7 +405,7 @@ fn run_cli() -> ExitCode {
             let loaded = match check::resolve_cases(&cases, &cases_dir).and_then(|files| {
                 files
                     .iter()
-                    .map(|f| fringe::case::load::load(f).map_err(check::InputError::from))
+                    .map(|f| fringe::harness::case::load::load(f).map_err(check::InputError::from))
                     .collect::<Result<Vec<_>, _>>()
             }) {
                 Ok(c) => c,
@@ -416,16 +420,16 @@ fn run_cli() -> ExitCode {
             for case in &loaded {
                 let name = &case.spec.name;
                 bar.set_message(name.clone());
-                let rows = fringe::tradeoff::measure(case, repeats);
+                let rows = fringe::harness::tradeoff::measure(case, repeats);
                 bar.inc(1);
-                let line = fringe::tradeoff::summary(name, &rows);
+                let line = fringe::harness::tradeoff::summary(name, &rows);
                 bar.suspend(|| outln!("{line}"));
                 summaries.push_str(&line);
                 summaries.push('\n');
                 let path = out.join("tradeoff").join(format!("{name}_pareto.png"));
-                let written =
-                    fringe::report::tradeoff_plot::pareto_png(name, &rows).and_then(|png| {
-                        fringe::report::write_atomic(&path, &png).map_err(|e| e.to_string())
+                let written = fringe::output::report::tradeoff_plot::pareto_png(name, &rows)
+                    .and_then(|png| {
+                        fringe::output::report::write_atomic(&path, &png).map_err(|e| e.to_string())
                     });
                 if let Err(e) = written {
                     eprintln!("error: {}: {e}", path.display());
@@ -435,19 +439,20 @@ fn run_cli() -> ExitCode {
             }
             bar.finish_and_clear();
             let path = out.join("tradeoff").join("tradeoff.csv");
-            if let Err(e) =
-                fringe::report::write_atomic(&path, fringe::tradeoff::csv(&all).as_bytes())
-            {
+            if let Err(e) = fringe::output::report::write_atomic(
+                &path,
+                fringe::harness::tradeoff::csv(&all).as_bytes(),
+            ) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
             let path = out.join("tradeoff").join("summary.txt");
-            if let Err(e) = fringe::report::write_atomic(&path, summaries.as_bytes()) {
+            if let Err(e) = fringe::output::report::write_atomic(&path, summaries.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
             // The report page shows the verdicts and the Pareto plots.
-            if let Err(e) = fringe::report::html::write_index(&out) {
+            if let Err(e) = fringe::output::report::html::write_index(&out) {
                 eprintln!("error: {e}");
                 return ExitCode::from(2);
             }
@@ -496,24 +501,24 @@ fn run_cli() -> ExitCode {
             illuminant,
         } => {
             let run = || -> Result<(), String> {
-                let opts = fringe::figures::FigureOptions {
-                    size: fringe::render::parse_size(&size)?,
+                let opts = fringe::output::figures::FigureOptions {
+                    size: fringe::output::render::parse_size(&size)?,
                     samples,
                     illuminant: illuminant.get(),
                     progress: true,
-                    ..fringe::figures::FigureOptions::check_default()
+                    ..fringe::output::figures::FigureOptions::check_default()
                 };
-                let m = fringe::figures::generate(&out, &opts)?;
+                let m = fringe::output::figures::generate(&out, &opts)?;
                 for e in &m.fig8 {
                     eprint!(
                         "{}",
-                        fringe::figures::fig8_text(&e.left, &e.right, &e.stats)
+                        fringe::output::figures::fig8_text(&e.left, &e.right, &e.stats)
                     );
                 }
                 for (what, secs) in &m.timings {
                     eprintln!("{what}: {secs:.2} s");
                 }
-                fringe::report::html::write_index(&out)?;
+                fringe::output::report::html::write_index(&out)?;
                 eprintln!(
                     "figures in {}, report {}",
                     out.join("figures").display(),
@@ -551,26 +556,31 @@ fn run_cli() -> ExitCode {
                 eprintln!("error: --rays must be 1..=1e8 and --pixels 1..=4096");
                 return ExitCode::from(2);
             }
-            let bar = progress_bar(fringe::forward_study::steps(&rays, &pixels), "forward");
-            let rows = fringe::forward_study::run_observed(seed, &rays, &pixels, || bar.inc(1));
+            let bar = progress_bar(
+                fringe::harness::forward_study::steps(&rays, &pixels),
+                "forward",
+            );
+            let rows =
+                fringe::harness::forward_study::run_observed(seed, &rays, &pixels, || bar.inc(1));
             bar.finish_and_clear();
-            let text = fringe::forward_study::csv(&rows);
+            let text = fringe::harness::forward_study::csv(&rows);
             let csv_path = out.join("forward").join("forward.csv");
             let path = out.join("forward").join("forward.csv");
-            if let Err(e) = fringe::report::write_atomic(&path, text.as_bytes()) {
+            if let Err(e) = fringe::output::report::write_atomic(&path, text.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
             let path = out.join("forward").join("forward.png");
-            let written = fringe::report::tradeoff_plot::forward_png(&rows).and_then(|png| {
-                fringe::report::write_atomic(&path, &png).map_err(|e| e.to_string())
-            });
+            let written =
+                fringe::output::report::tradeoff_plot::forward_png(&rows).and_then(|png| {
+                    fringe::output::report::write_atomic(&path, &png).map_err(|e| e.to_string())
+                });
             if let Err(e) = written {
                 eprintln!("error: {}: {e}", path.display());
                 return ExitCode::from(2);
             }
             // The report page shows the study's plot and table.
-            if let Err(e) = fringe::report::html::write_index(&out) {
+            if let Err(e) = fringe::output::report::html::write_index(&out) {
                 eprintln!("error: {e}");
                 return ExitCode::from(2);
             }
@@ -614,7 +624,7 @@ fn run_cli() -> ExitCode {
                         );
                     }
                     match opts.format {
-                        Format::Table => out!("{}", fringe::report::table(&outcome.rows)),
+                        Format::Table => out!("{}", fringe::output::report::table(&outcome.rows)),
                         Format::Json => outln!(
                             "{}",
                             serde_json::to_string_pretty(&outcome.rows).unwrap_or_default()
@@ -645,7 +655,7 @@ fn run_cli() -> ExitCode {
 }
 
 /// The rows that failed their tolerance, one line each on stderr (`check` and `grade`).
-fn print_failed_rows(rows: &[fringe::report::Row]) {
+fn print_failed_rows(rows: &[fringe::output::report::Row]) {
     for r in rows.iter().filter(|r| r.pass == Some(false)) {
         eprintln!(
             "  {} {} {}: max|dev| {:e} > {:e}; {}",
@@ -668,8 +678,8 @@ fn grade_command(
     cases_dir: PathBuf,
     format: FormatArg,
 ) -> ExitCode {
-    use fringe::grade::grading;
-    let Some(level) = fringe::fidelity::Fidelity::parse(level) else {
+    use fringe::harness::grade::grading;
+    let Some(level) = fringe::accumulate::fidelity::Fidelity::parse(level) else {
         eprintln!(
             "error: --level {level:?}: allowed: incoherent, scalar, scalar_jump, paper_rules, vector"
         );
@@ -689,7 +699,7 @@ fn grade_command(
         }
         Ok(outcome) => {
             match format {
-                FormatArg::Table => out!("{}", fringe::report::table(&outcome.rows)),
+                FormatArg::Table => out!("{}", fringe::output::report::table(&outcome.rows)),
                 FormatArg::Json => outln!(
                     "{}",
                     serde_json::to_string_pretty(&outcome.rows).unwrap_or_default()
@@ -709,14 +719,14 @@ fn grade_command(
     }
 }
 
-/// `fringe render`: parse the arguments into a [`fringe::render::Command`] and run it.
+/// `fringe render`: parse the arguments into a [`fringe::output::render::Command`] and run it.
 #[allow(clippy::too_many_arguments)]
 fn render_command(
     case: &str,
     fidelity: &[String],
     samples: Option<usize>,
     wavelengths_nm: Option<Vec<f64>>,
-    illuminant: fringe::colour::Illuminant,
+    illuminant: fringe::output::colour::Illuminant,
     size: Option<&str>,
     output: Option<PathBuf>,
     cases_dir: &std::path::Path,
@@ -734,13 +744,13 @@ fn render_command(
             ));
         }
     }
-    use fringe::colour::WavelengthGrid;
+    use fringe::output::colour::WavelengthGrid;
     let shadings = fidelity
         .iter()
-        .map(|f| fringe::render::parse_shading(f))
+        .map(|f| fringe::output::render::parse_shading(f))
         .collect::<Result<Vec<_>, _>>()?;
-    // The options get the case file's caps (src/case/load.rs `limits`).
-    use fringe::case::load::limits::{MAX_SPECTRAL_SAMPLES, WAVELENGTH_NM};
+    // The options get the case file's caps (src/harness/case/load.rs `limits`).
+    use fringe::harness::case::load::limits::{MAX_SPECTRAL_SAMPLES, WAVELENGTH_NM};
     let white = match (samples, wavelengths_nm) {
         (Some(k), _) => {
             if !(2..=MAX_SPECTRAL_SAMPLES).contains(&k) {
@@ -749,7 +759,8 @@ fn render_command(
                 ));
             }
             Some((
-                fringe::figures::visible_grid(k).map_err(|e| format!("--samples {k}: {e}"))?,
+                fringe::output::figures::visible_grid(k)
+                    .map_err(|e| format!("--samples {k}: {e}"))?,
                 illuminant,
             ))
         }
@@ -780,15 +791,15 @@ fn render_command(
         }
         (None, None) => None,
     };
-    let cmd = fringe::render::Command {
+    let cmd = fringe::output::render::Command {
         case: render_case(case, cases_dir)?,
         shadings,
         white,
-        size: size.map(fringe::render::parse_size).transpose()?,
+        size: size.map(fringe::output::render::parse_size).transpose()?,
         output,
         progress: true,
     };
-    fringe::render::run_command(&cmd)
+    fringe::output::render::run_command(&cmd)
 }
 
 /// `fringe fuzz`: check the options, run, print the report, write the shrunk failures.
@@ -799,7 +810,7 @@ fn fuzz_command(
     skip: Vec<String>,
     out: &std::path::Path,
 ) -> ExitCode {
-    use fringe::fuzz::{self, Family};
+    use fringe::harness::fuzz::{self, Family};
     let families: Result<Vec<Family>, String> = if family.is_empty() {
         Ok(Family::ALL.to_vec())
     } else {
@@ -868,7 +879,7 @@ fn render_case(name: &str, cases_dir: &std::path::Path) -> Result<PathBuf, Strin
             .chars()
             .all(|ch| ch.is_ascii_lowercase() || ch.is_ascii_digit() || ch == '_');
     if !plain {
-        return fringe::render::resolve_case(name, cases_dir);
+        return fringe::output::render::resolve_case(name, cases_dir);
     }
     let figures = check::library_root().join("figures");
     for dir in [cases_dir, figures.as_path()] {

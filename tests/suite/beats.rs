@@ -5,8 +5,8 @@
 //! must equal Σ_i w_i I(λ_i) summed term by term.
 
 use fringe::accumulate::Accumulator;
-use fringe::beats::{Beats, SpectralContribution};
-use fringe::ray::Field3;
+use fringe::optics::ray::Field3;
+use fringe::trace::beats::{Beats, SpectralContribution};
 use num_complex::Complex64;
 use proptest::prelude::*;
 
@@ -275,10 +275,10 @@ fn many_beams_in_one_group_use_the_accumulator() {
 #[test]
 fn spectrum_traced_once_matches_airy_and_per_wavelength_traces() {
     use crate::support::airy_plate::airy_plate_of;
-    use fringe::analytic::plate::{Film, Pol};
-    use fringe::fidelity::Fidelity;
-    use fringe::material::Medium;
-    use fringe::path::EnumerationLimits;
+    use fringe::accumulate::fidelity::Fidelity;
+    use fringe::harness::analytic::plate::{Film, Pol};
+    use fringe::optics::material::Medium;
+    use fringe::trace::path::EnumerationLimits;
     use fringe::trace::{self, TraceSettings};
     use glam::DVec3;
 
@@ -316,7 +316,7 @@ fn spectrum_traced_once_matches_airy_and_per_wavelength_traces() {
         "every order within the bound arrives"
     );
     let mut beats = Beats::default();
-    beats.set(&fringe::beats::vector_rays(&arrivals));
+    beats.set(&fringe::trace::beats::vector_rays(&arrivals));
     let mut spectrum = vec![0.0; lambdas.len()];
     beats.intensities(&lambdas, &mut spectrum);
     let mut worst_airy = 0.0f64;

@@ -1,5 +1,5 @@
 //! The case library as one data-driven test, and the documented case format
-//! (`cases/schema.json`) checked against the serde types of `src/case/spec.rs`.
+//! (`cases/schema.json`) checked against the serde types of `src/harness/case/spec.rs`.
 //!
 //! * `every_library_case_passes`: every `cases/*.json` loads, runs, passes every row that has a
 //!   tolerance, has an exact `auto` level, matches its golden file, and produces only finite
@@ -14,11 +14,11 @@
 
 use crate::support::schema;
 
-use fringe::case::load::{self, limits};
-use fringe::case::run;
-use fringe::case::spec;
-use fringe::fidelity::Fidelity;
-use fringe::report;
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::load::{self, limits};
+use fringe::harness::case::run;
+use fringe::harness::case::spec;
+use fringe::output::report;
 use serde::de::DeserializeOwned;
 use serde_json::{Value, json};
 use std::collections::BTreeSet;
@@ -189,7 +189,7 @@ fn every_library_case_passes() {
 fn the_committed_schema_is_the_one_generated_from_spec_rs() {
     let path = root().join("cases/schema.json");
     let committed = std::fs::read_to_string(&path).unwrap_or_default();
-    let generated = fringe::case::schema::case_schema_text();
+    let generated = fringe::harness::case::schema::case_schema_text();
     if committed != generated {
         let line = committed
             .lines()
@@ -197,7 +197,7 @@ fn the_committed_schema_is_the_one_generated_from_spec_rs() {
             .position(|(a, b)| a != b)
             .unwrap_or(committed.lines().count().min(generated.lines().count()));
         panic!(
-            "{} is not the schema generated from src/case/spec.rs (first difference at line {}: \
+            "{} is not the schema generated from src/harness/case/spec.rs (first difference at line {}: \
              committed {:?}, generated {:?}); regenerate it with\n    \
              cargo run -- schema > cases/schema.json",
             path.display(),

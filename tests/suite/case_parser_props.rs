@@ -1,7 +1,7 @@
 //! Fuzzing the case parser with proptest: arbitrary JSON, mutated library cases (keys dropped,
 //! types changed, numbers made huge / negative / zero / tiny, strings replaced, elements
 //! duplicated) and mutated case text (truncated, spliced) go through
-//! `fringe::case::load::parse`, which must never panic; every error has a JSON path starting
+//! `fringe::harness::case::load::parse`, which must never panic; every error has a JSON path starting
 //! with `$` and a message; every accepted case builds (`build::build_scene` for every probe
 //! override, `build::probe_points`, the spectrum, the optics at every traced wavelength) into
 //! finite tracer objects without panicking. The tracer itself is not run (too slow for random
@@ -15,10 +15,10 @@
 use crate::support::library;
 use crate::support::schema;
 
-use fringe::case::build::{self, Overrides};
-use fringe::case::load::{self, limits};
-use fringe::case::spec::{CaseFile, Probe, SweepParameter};
-use fringe::source::Emitter;
+use fringe::harness::case::build::{self, Overrides};
+use fringe::harness::case::load::{self, limits};
+use fringe::harness::case::spec::{CaseFile, Probe, SweepParameter};
+use fringe::scene::source::Emitter;
 use proptest::prelude::*;
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -128,8 +128,8 @@ fn check_builds(spec: &CaseFile) {
             assert!(s.intensity.is_finite() && s.intensity > 0.0);
             for ch in s.channels() {
                 let v = match ch.field {
-                    fringe::source::ChannelField::Linear { reference, .. } => reference,
-                    fringe::source::ChannelField::Dipole { axis } => axis,
+                    fringe::scene::source::ChannelField::Linear { reference, .. } => reference,
+                    fringe::scene::source::ChannelField::Dipole { axis } => axis,
                 };
                 assert!(finite(v));
             }
@@ -566,8 +566,8 @@ fn regressions() {
             Ok(case) => {
                 // Errors found by the work preflight or by tracing pass parse(); `fringe check`
                 // finds them before anything is written, and so must this.
-                let err = fringe::case::run::preflight(&case)
-                    .and_then(|_| fringe::case::run::run_with(&case, false).map(|_| 0.0))
+                let err = fringe::harness::case::run::preflight(&case)
+                    .and_then(|_| fringe::harness::case::run::run_with(&case, false).map(|_| 0.0))
                     .expect_err(&format!(
                         "{file} is accepted by the parser, preflight and run"
                     ));

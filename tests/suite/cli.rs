@@ -127,7 +127,7 @@ fn check_runs_the_stability_sweep_and_reports_it() {
         .stderr(predicate::str::contains("stability checks"));
     let text = std::fs::read_to_string(lib.out().join("stability.csv")).unwrap();
     let mut lines = text.lines();
-    assert_eq!(lines.next(), Some(fringe::stability::CSV_HEADER));
+    assert_eq!(lines.next(), Some(fringe::harness::stability::CSV_HEADER));
     let rows: Vec<&str> = lines.collect();
     assert!(rows.len() >= 40, "{} stability rows", rows.len());
     assert!(

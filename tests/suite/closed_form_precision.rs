@@ -3,7 +3,7 @@
 //! profile's scale, where the same formula in plain f64 is off by up to ~1e-9 at dark fringes
 //! (the phase of a 1–10 m path difference formed from two rounded distances).
 
-use fringe::analytic::young;
+use fringe::harness::analytic::young;
 use glam::DVec3;
 
 /// Rows of tests/data/young_mpmath.csv: inputs (exact binary64) and the 50-digit intensity.
@@ -57,7 +57,7 @@ fn two_beam_plate_is_within_1e_14_of_a_50_digit_evaluation() {
         .collect();
     let scale = rows.iter().map(|r| r[7]).fold(0.0, f64::max);
     for (k, r) in rows.iter().enumerate() {
-        let plate = fringe::analytic::plate::TwoBeamPlate {
+        let plate = fringe::harness::analytic::plate::TwoBeamPlate {
             n1: r[0],
             n2: r[1],
             thickness_m: r[2],
@@ -103,7 +103,7 @@ fn lloyd_is_within_1e_14_of_a_50_digit_evaluation() {
         .iter()
         .enumerate()
     {
-        let l = fringe::analytic::lloyd::Lloyd {
+        let l = fringe::harness::analytic::lloyd::Lloyd {
             n1: r[15],
             n2: r[16],
             source: v3(r, 0),
@@ -128,8 +128,9 @@ fn lloyd_is_within_1e_14_of_a_50_digit_evaluation() {
         horiz -= horiz.dot(nrm) * nrm + horiz.dot(axis) * axis;
         let len = horiz.length();
         let (rd, ri) = (len.hypot(y - h), len.hypot(y + h));
-        let rs = fringe::fresnel::fresnel(l.n1, l.n2, (h + y) / ri).r_s;
-        let naive = (fringe::analytic::path_phasor(l.n1 * (ri - rd), lambda) * rs + 1.0).norm_sqr();
+        let rs = fringe::optics::fresnel::fresnel(l.n1, l.n2, (h + y) / ri).r_s;
+        let naive = (fringe::harness::analytic::path_phasor(l.n1 * (ri - rd), lambda) * rs + 1.0)
+            .norm_sqr();
         naive_worst = naive_worst.max((naive - expected).abs());
     }
     assert!(naive_worst > 1e-11, "plain f64 worst error {naive_worst:e}");
@@ -148,7 +149,7 @@ fn wedge_is_within_1e_14_of_a_50_digit_evaluation() {
         .iter()
         .enumerate()
     {
-        let w = fringe::analytic::wedge::Wedge {
+        let w = fringe::harness::analytic::wedge::Wedge {
             n1: r[15],
             n: r[16],
             n3: r[17],
@@ -178,11 +179,12 @@ fn wedge_is_within_1e_14_of_a_50_digit_evaluation() {
         let depth = t0 + x_i * a.tan();
         let delta = w.n * depth * (1.0 + 1.0 / (2.0 * a).cos())
             + w.n1 * ho * 2.0 * (0.5 * psi).sin().powi(2) / psi.cos();
-        let f = |n1, n2, c| fringe::fresnel::fresnel(n1, n2, c);
+        let f = |n1, n2, c| fringe::optics::fresnel::fresnel(n1, n2, c);
         let a2 =
             f(w.n1, w.n, 1.0).t_s * f(w.n, w.n3, a.cos()).r_s * f(w.n, w.n1, (2.0 * a).cos()).t_s;
-        let naive =
-            (f(w.n1, w.n, 1.0).r_s + a2 * fringe::analytic::path_phasor(delta, lambda)).norm_sqr();
+        let naive = (f(w.n1, w.n, 1.0).r_s
+            + a2 * fringe::harness::analytic::path_phasor(delta, lambda))
+        .norm_sqr();
         naive_worst = naive_worst.max((naive - expected).abs());
     }
     assert!(naive_worst > 1e-11, "plain f64 worst error {naive_worst:e}");
@@ -195,7 +197,7 @@ fn wedge_is_within_1e_14_of_a_50_digit_evaluation() {
 /// film, and misses by more than 1e-13 on the same data.
 #[test]
 fn airy_is_within_1e_14_of_a_50_digit_evaluation() {
-    use fringe::analytic::plate::{Film, Pol};
+    use fringe::harness::analytic::plate::{Film, Pol};
     let mut naive_worst = 0.0f64;
     for (k, r) in data(include_str!("../data/airy_mpmath.csv"))
         .iter()
@@ -237,7 +239,7 @@ fn airy_is_within_1e_14_of_a_50_digit_evaluation() {
 /// directions and lengths in plain f64 misses by ~1e-11 rad.
 #[test]
 fn plane_wave_path_is_within_1e_14_rad_of_a_50_digit_evaluation() {
-    use fringe::analytic::tir::{Face, plane_wave_path};
+    use fringe::harness::analytic::tir::{Face, plane_wave_path};
     let mut naive_worst = 0.0f64;
     for (k, r) in data(include_str!("../data/plane_wave_mpmath.csv"))
         .iter()
@@ -258,7 +260,7 @@ fn plane_wave_path_is_within_1e_14_rad_of_a_50_digit_evaluation() {
         let (u0, r0, n0, x, lambda) = (v3(r, 0), v3(r, 3), r[6], v3(r, 34), r[37]);
         let expected = num_complex::Complex64::new(r[38], r[39]);
         let (op, _) = plane_wave_path(u0, r0, n0, &faces, x).unwrap();
-        let got = fringe::analytic::precise::path_phasor(op, lambda);
+        let got = fringe::harness::analytic::precise::path_phasor(op, lambda);
         assert!(
             (got - expected).norm() <= 1e-14,
             "row {k}: actual {got}, expected {expected}, err {:e}",
@@ -271,14 +273,14 @@ fn plane_wave_path_is_within_1e_14_rad_of_a_50_digit_evaluation() {
             q = f.point;
             let m = f.normal.normalize();
             if f.reflect {
-                u = fringe::fresnel::reflect(u, m);
+                u = fringe::optics::fresnel::reflect(u, m);
             } else {
-                u = fringe::fresnel::refract(u, m, f.n_before, f.n_after).unwrap();
+                u = fringe::optics::fresnel::refract(u, m, f.n_before, f.n_after).unwrap();
                 n = f.n_after;
             }
         }
         op += n * u.dot(x - q);
-        let naive = fringe::analytic::path_phasor(op, lambda);
+        let naive = fringe::harness::analytic::path_phasor(op, lambda);
         naive_worst = naive_worst.max((naive - expected).norm());
     }
     assert!(naive_worst > 1e-13, "plain f64 worst error {naive_worst:e}");

@@ -24,11 +24,11 @@
 use crate::common;
 
 use common::*;
-use fringe::fidelity::Fidelity;
-use fringe::material::Medium;
-use fringe::path::{EnumerationLimits, Event, EventKind, Sequence, Target};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::optics::material::Medium;
+use fringe::scene::source::{Emitter, Polarization, Source};
 use fringe::scene::{Scene, SceneOptics};
-use fringe::source::{Emitter, Polarization, Source};
+use fringe::trace::path::{EnumerationLimits, Event, EventKind, Sequence, Target};
 use fringe::trace::{self, Plan, TraceSettings};
 use glam::DVec3;
 use num_complex::Complex64;

@@ -22,12 +22,12 @@ use crate::common;
 use crate::support::airy_plate as support_airy_plate;
 
 use common::config;
-use fringe::geometry::{Extent, Plane, Rect};
-use fringe::interaction::CoefficientModel;
-use fringe::material::{CoherenceRules, Medium};
-use fringe::path::{self, Event, EventKind, Target};
+use fringe::optics::interaction::CoefficientModel;
+use fringe::optics::material::{CoherenceRules, Medium};
+use fringe::scene::geometry::{Extent, Plane, Rect};
+use fringe::scene::source::{Emitter, Polarization, Source};
 use fringe::scene::{Scene, SceneOptics, Surface, SurfaceKind};
-use fringe::source::{Emitter, Polarization, Source};
+use fringe::trace::path::{self, Event, EventKind, Target};
 use fringe::trace::{self, Plan, TraceSettings};
 use glam::DVec3;
 use proptest::prelude::*;

@@ -2,11 +2,11 @@
 //! Newton's CSV against `colour::newton_sequence`, plots of the right size, a self-contained
 //! index.html naming every case, and the figure scenes themselves.
 
-use fringe::check::{self, CheckOptions, Format};
-use fringe::colour::{self, Adaptation, Illuminant, WavelengthGrid};
-use fringe::figures::{self, FigureOptions};
-use fringe::report::image::{self as img, Rgb8Image};
-use fringe::report::{html, plot};
+use fringe::harness::check::{self, CheckOptions, Format};
+use fringe::output::colour::{self, Adaptation, Illuminant, WavelengthGrid};
+use fringe::output::figures::{self, FigureOptions};
+use fringe::output::report::image::{self as img, Rgb8Image};
+use fringe::output::report::{html, plot};
 use std::path::{Path, PathBuf};
 
 fn grey(width: usize, height: usize, v: u8) -> Rgb8Image {
@@ -130,9 +130,12 @@ fn figure_scenes_load_and_validate_grids() {
         "figures/plate_amplitude_division.json",
         "figures/young_fig3.json",
     ] {
-        let c = fringe::case::load::load(Path::new(f)).unwrap();
+        let c = fringe::harness::case::load::load(Path::new(f)).unwrap();
         assert!(
-            matches!(c.spec.probe, fringe::case::spec::Probe::Grid { .. }),
+            matches!(
+                c.spec.probe,
+                fringe::harness::case::spec::Probe::Grid { .. }
+            ),
             "{f}"
         );
     }
@@ -165,7 +168,7 @@ fn figure_scenes_load_and_validate_grids() {
         ),
     ] {
         assert_ne!(bad, text, "the replacement for {path} did not apply");
-        let e = fringe::case::load::parse(Path::new("bad.json"), &bad).unwrap_err();
+        let e = fringe::harness::case::load::parse(Path::new("bad.json"), &bad).unwrap_err();
         assert_eq!(e.json_path, path, "{e}");
     }
 }

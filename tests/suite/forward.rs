@@ -1,7 +1,7 @@
 //! Renderer mode: forward ray fans against the exact point-to-point tracer.
 
-use fringe::forward::{self, Estimator, ForwardSettings};
-use fringe::forward_study::{self, StudyScene};
+use fringe::harness::forward_study::{self, StudyScene};
+use fringe::trace::forward::{self, Estimator, ForwardSettings};
 
 fn settings(s: &StudyScene, rays: usize, seed: u64) -> ForwardSettings {
     ForwardSettings {

@@ -32,7 +32,7 @@
 use crate::common;
 
 use common::*;
-use fringe::fresnel::{brewster_angle, critical_angle, fresnel, ideal_mirror};
+use fringe::optics::fresnel::{brewster_angle, critical_angle, fresnel, ideal_mirror};
 use num_complex::Complex64;
 
 fn assert_c(what: &str, actual: Complex64, expected: Complex64, tol: f64) {

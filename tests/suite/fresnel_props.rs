@@ -11,7 +11,7 @@
 use crate::common;
 
 use common::*;
-use fringe::fresnel::{
+use fringe::optics::fresnel::{
     FresnelCoefficients, brewster_angle, critical_angle, fresnel, paper_rules, reflect, refract,
 };
 use num_complex::Complex64;

@@ -4,8 +4,8 @@
 //! codes.
 
 use assert_cmd::Command;
-use fringe::case::load;
-use fringe::fuzz::{self, Family, FuzzOptions, Verdict};
+use fringe::harness::case::load;
+use fringe::harness::fuzz::{self, Family, FuzzOptions, Verdict};
 use serde_json::Value;
 use std::path::Path;
 

@@ -6,8 +6,8 @@
 //! different rounding of the inputs: every probe coordinate moved by one ulp must stay within
 //! the tolerance, while a physical change of 1 nm must not.
 
-use fringe::case::{load, run};
-use fringe::report;
+use fringe::harness::case::{load, run};
+use fringe::output::report;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 

@@ -7,8 +7,8 @@
 
 use crate::support::library;
 
-use fringe::case::load::{self, limits};
-use fringe::case::run;
+use fringe::harness::case::load::{self, limits};
+use fringe::harness::case::run;
 use serde_json::{Value, json};
 use std::path::Path;
 
@@ -180,7 +180,7 @@ fn case_names_of_the_tools_outputs_are_refused() {
         assert_eq!(e.json_path, "$.name", "{name}: {}", e.message);
         assert!(e.message.contains("reserved"), "{name}: {}", e.message);
     }
-    assert!(limits::RESERVED_CASE_NAMES.contains(&fringe::check::STABILITY));
+    assert!(limits::RESERVED_CASE_NAMES.contains(&fringe::harness::check::STABILITY));
 }
 
 /// Films down to 1 pm trace (issue 13), so 1 pm is accepted; a thickness below it (1e-300 µm

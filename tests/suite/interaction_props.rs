@@ -10,13 +10,13 @@
 use crate::common;
 
 use common::*;
-use fringe::fresnel::s_direction;
-use fringe::interaction::{
+use fringe::optics::fresnel::s_direction;
+use fringe::optics::interaction::{
     CoefficientModel, InterfaceHit, JonesFrame, SurfaceOptics, interact, interact_along,
     interact_along_shared,
 };
-use fringe::material::CoherenceRules;
-use fringe::ray::{INCOHERENT, LedgerEntry, PhaseLedger, Ray};
+use fringe::optics::material::CoherenceRules;
+use fringe::optics::ray::{INCOHERENT, LedgerEntry, PhaseLedger, Ray};
 use glam::DVec3;
 use num_complex::Complex64;
 use proptest::prelude::*;
@@ -44,7 +44,7 @@ fn make_ray(
         coherence_id: id,
         coherence_length_m: f64::INFINITY,
         jones,
-        optical_path: fringe::double_double::DoubleDouble::ZERO,
+        optical_path: fringe::optics::double_double::DoubleDouble::ZERO,
         index,
         ledger: PhaseLedger::default(),
         normal_q2: None,

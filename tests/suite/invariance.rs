@@ -6,14 +6,14 @@
 //! Where a representational limit of f64 points remains (a plate moved ~1 m off the origin
 //! with a tilted normal), the test measures it and pins the measured size instead of hiding it.
 
-use fringe::analytic::plate::{Film, Pol};
-use fringe::fidelity::Fidelity;
-use fringe::geometry::{Extent, Plane, Rect};
-use fringe::material::{CoherenceRules, Medium};
-use fringe::path::{EnumerationLimits, Target};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::analytic::plate::{Film, Pol};
+use fringe::harness::stability::{PathArithmetic, film_tolerance, traced_film_with};
+use fringe::optics::material::{CoherenceRules, Medium};
+use fringe::scene::geometry::{Extent, Plane, Rect};
+use fringe::scene::source::{Emitter, Polarization, Source};
 use fringe::scene::{Scene, Surface, SurfaceKind};
-use fringe::source::{Emitter, Polarization, Source};
-use fringe::stability::{PathArithmetic, film_tolerance, traced_film_with};
+use fringe::trace::path::{EnumerationLimits, Target};
 use fringe::trace::{self, TraceSettings};
 use glam::{DQuat, DVec3};
 use proptest::prelude::*;
@@ -426,7 +426,7 @@ fn michelson_intensity(l1: f64, l2: f64) -> f64 {
     );
     let seqs: Vec<String> = arr
         .iter()
-        .map(|a| fringe::path::sequence_label(a.path.sequence.iter()))
+        .map(|a| fringe::trace::path::sequence_label(a.path.sequence.iter()))
         .collect();
     assert_eq!(arr.len(), 2, "two arms reach the axis point: {seqs:?}");
     trace::intensity(&arr, Fidelity::Vector)

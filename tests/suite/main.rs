@@ -37,7 +37,7 @@ mod stability_report;
 mod tradeoff;
 mod trail;
 mod truth;
-mod truth_plates;
 mod truth_geometry;
+mod truth_plates;
 mod unpolarized;
 mod young_two_point;

@@ -8,7 +8,7 @@
 //! table to a few 1e-6, so the 5-decimal values are asserted to 1e-5 and the brief's rounded
 //! values (1.5168, 1.5224, 1.5143) to 1e-4. Cauchy values are by hand.
 
-use fringe::material::{Dispersion, IndexError, Medium};
+use fringe::optics::material::{Dispersion, IndexError, Medium};
 
 fn check(d: &Dispersion, lambda_nm: f64, expected: f64, tol: f64) {
     let n = d

@@ -10,11 +10,11 @@
 use crate::common;
 
 use common::*;
-use fringe::geometry::{Extent, Plane, Rect};
-use fringe::material::{CoherenceRules, Medium};
-use fringe::path::{Event, EventKind, PathError, SolveOptions, SolvedPath, Target, solve};
+use fringe::optics::material::{CoherenceRules, Medium};
+use fringe::scene::geometry::{Extent, Plane, Rect};
+use fringe::scene::source::Emitter;
 use fringe::scene::{Scene, SceneOptics, Surface, SurfaceKind};
-use fringe::source::Emitter;
+use fringe::trace::path::{Event, EventKind, PathError, SolveOptions, SolvedPath, Target, solve};
 use glam::DVec3;
 use proptest::prelude::*;
 

@@ -10,9 +10,9 @@
 //! 64 scenes by default; `PROPTEST_CASES=1000 cargo test --release --test pipeline_props` for
 //! a longer run.
 
-use fringe::case::load;
-use fringe::case::run;
-use fringe::report;
+use fringe::harness::case::load;
+use fringe::harness::case::run;
+use fringe::output::report;
 use proptest::prelude::*;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -169,7 +169,9 @@ fn rhomb_retardance_uses_the_medium_beyond_the_face() {
         m.analytic[0],
         2.0 * one
     );
-    let s = m.stats(fringe::fidelity::Fidelity::Vector).unwrap();
+    let s = m
+        .stats(fringe::accumulate::fidelity::Fidelity::Vector)
+        .unwrap();
     assert!(
         s.max_abs_dev <= 1e-9,
         "traced vs closed form: {}",

@@ -14,9 +14,9 @@
 //!   from its faces' rounded points; it now reads the thickness as held, and forms the two-beam
 //!   sum without cancellation.
 
-use fringe::case::load;
-use fringe::case::run;
-use fringe::fidelity::Fidelity;
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::load;
+use fringe::harness::case::run;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -139,7 +139,7 @@ fn the_library_is_within_what_the_arithmetic_allows() {
                 .get(&Fidelity::Vector)
                 .is_some_and(|t| *t <= 1e-12)
             {
-                let allowed = derived.max(fringe::fuzz::DERIVED_FLOOR);
+                let allowed = derived.max(fringe::harness::fuzz::DERIVED_FLOOR);
                 assert!(
                     st.max_abs_dev <= allowed,
                     "{} {}: {:e} > {allowed:e}",

@@ -1,21 +1,21 @@
-//! Pictures (`fringe::render`): a rendered pixel is the exact trace at its screen point, the
+//! Pictures (`fringe::output::render`): a rendered pixel is the exact trace at its screen point, the
 //! streamed XYZ equals the sum of stored per-wavelength images, the plate picture matches the
 //! two-beam closed form where that applies, and the command line writes PNGs of the asked size.
 
-use fringe::case::build::{self, Overrides};
-use fringe::case::load::{self, Case};
-use fringe::case::spec::{Light, MediumSpec, Observer, Probe};
-use fringe::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
-use fringe::fidelity::Fidelity;
-use fringe::render::{self, ImageValues, Request, Screen, Shading, Spectrum};
-use fringe::report::image as img;
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::build::{self, Overrides};
+use fringe::harness::case::load::{self, Case};
+use fringe::harness::case::spec::{Light, MediumSpec, Observer, Probe};
+use fringe::output::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
+use fringe::output::render::{self, ImageValues, Request, Screen, Shading, Spectrum};
+use fringe::output::report::image as img;
 use fringe::trace;
 use glam::DVec3;
 use predicates::prelude::PredicateBooleanExt;
 use std::path::Path;
 
 fn plate() -> Case {
-    fringe::figures::plate_case().expect("the plate figure scene is valid")
+    fringe::output::figures::plate_case().expect("the plate figure scene is valid")
 }
 
 fn intensities(r: &render::Render, k: usize) -> &[f64] {
@@ -55,7 +55,7 @@ fn traced_at(
 
 #[test]
 fn monochrome_pixels_equal_the_trace_at_their_points() {
-    for case in [plate(), fringe::figures::young_case().unwrap()] {
+    for case in [plate(), fringe::output::figures::young_case().unwrap()] {
         let screen = Screen::from_probe(&case.spec.probe, Some((7, 5))).unwrap();
         let levels: Vec<Shading> = Fidelity::ALL.iter().map(|l| Shading::Level(*l)).collect();
         let r = render::render(
@@ -119,10 +119,10 @@ fn a_line_probe_renders_as_its_probe_points() {
         assert!((screen.geometry.position(i, 0) - p).length() < 1e-15);
         // Independent closed form: Young's exact two-slit intensity.
         let built = build::build_scene(&case.spec.scene, &Overrides::default()).unwrap();
-        let expected = fringe::case::reference::value(
+        let expected = fringe::harness::case::reference::value(
             &case.spec.references[0].model,
             &built,
-            &fringe::path::Target::Point(p),
+            &fringe::trace::path::Target::Point(p),
             550e-9,
             false,
         )
@@ -162,10 +162,10 @@ fn the_middle_row_of_the_plate_matches_the_two_beam_closed_form() {
                 "middle row must lie at y = 0, got {}",
                 p.y
             );
-            fringe::case::reference::value(
+            fringe::harness::case::reference::value(
                 &case.spec.references[0].model,
                 &built,
-                &fringe::path::Target::Point(p),
+                &fringe::trace::path::Target::Point(p),
                 550e-9,
                 false,
             )

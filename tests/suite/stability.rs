@@ -3,17 +3,17 @@
 //! NaN or infinity anywhere for random valid scenes. Every expected value is a closed form
 //! evaluated independently (how is said at each test).
 
-use fringe::analytic::plate::{Film, Pol};
-use fringe::fidelity::Fidelity;
-use fringe::fresnel::{brewster_angle, critical_angle, fresnel};
-use fringe::path::{EnumerationLimits, Target};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::analytic::plate::{Film, Pol};
+use fringe::optics::fresnel::{brewster_angle, critical_angle, fresnel};
+use fringe::trace::path::{EnumerationLimits, Target};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
 use proptest::prelude::*;
 
 /// The traced far-field film reflectance/transmittance (the tracer's own scene set-up, shared
 /// with the report's stability sweep).
-use fringe::stability::traced_film;
+use fringe::harness::stability::traced_film;
 
 #[test]
 fn named_angles_plus_minus_1e_12() {
@@ -136,7 +136,7 @@ fn path_differences_from_1_nm_to_10_m() {
     let lambda = 550e-9;
     for distance in [1e-9f64, 1e-6, 1e-3, 1.0, 10.0] {
         let dx = 1e-7 * distance.max(1e-6); // source offset along the line of sight
-        let scene = fringe::stability::collinear_sources(dx);
+        let scene = fringe::harness::stability::collinear_sources(dx);
         let p = DVec3::new(distance, 0.0, 0.0);
         let optics = scene.optics(lambda).unwrap();
         let limits = EnumerationLimits::default();
@@ -247,7 +247,7 @@ proptest! {
         let internal = (2 * orders + 1).min(2001);
         let r = traced_film([1.0, n2, n3], d, theta, lambda, pol, internal, true);
         prop_assert!(r.is_finite() && r >= 0.0, "R = {r}");
-        let t_dir_exists = fringe::fresnel::refract(DVec3::new(theta.sin(), 0.0, -theta.cos()), DVec3::Z, 1.0, n3).is_some();
+        let t_dir_exists = fringe::optics::fresnel::refract(DVec3::new(theta.sin(), 0.0, -theta.cos()), DVec3::Z, 1.0, n3).is_some();
         if t_dir_exists {
             let t = traced_film([1.0, n2, n3], d, theta, lambda, pol, internal, false);
             prop_assert!(t.is_finite() && t >= 0.0, "T = {t}");

@@ -1,8 +1,8 @@
 //! The report side of the robustness issue: the stability sweep of `fringe check`
-//! (`src/stability.rs`) passes every judged row with finite numbers, and its single-precision
+//! (`src/harness/stability.rs`) passes every judged row with finite numbers, and its single-precision
 //! illustration shows the failure that forming path differences before phases avoids.
 
-use fringe::stability::{self, DeviationKind, PATH_PHASE_TOLERANCE_RAD, WAVELENGTH_M};
+use fringe::harness::stability::{self, DeviationKind, PATH_PHASE_TOLERANCE_RAD, WAVELENGTH_M};
 
 #[test]
 fn every_stability_row_passes_with_finite_numbers() {
@@ -119,8 +119,11 @@ fn a_failing_stability_check_becomes_failing_table_rows() {
     let nan = sweep.rows.iter().position(|r| r.group == "paths").unwrap();
     sweep.rows[nan].deviation = f64::NAN;
     sweep.rows[nan].pass = Some(false);
-    let rows = fringe::check::stability_table_rows(&sweep);
-    assert!(rows.iter().all(|r| r.case == fringe::check::STABILITY));
+    let rows = fringe::harness::check::stability_table_rows(&sweep);
+    assert!(
+        rows.iter()
+            .all(|r| r.case == fringe::harness::check::STABILITY)
+    );
     let group = |g: &str| rows.iter().find(|r| r.metric == g).unwrap();
     assert_eq!(group("films").pass, Some(false));
     assert!(group("films").max_abs_dev > 1.0);
@@ -134,7 +137,7 @@ fn a_failing_stability_check_becomes_failing_table_rows() {
     assert_eq!(failing.len(), 1, "{rows:#?}");
     assert_eq!(failing[0].max_abs_dev, 1.0);
     assert_eq!(sweep.rows.len(), good);
-    let table = fringe::report::table(&rows);
+    let table = fringe::output::report::table(&rows);
     assert!(table.contains("FAIL"), "{table}");
 }
 

@@ -2,9 +2,9 @@
 //! the verdict ("cheapest setting within tolerance") is the same on every run because it ranks
 //! by a deterministic cost count, never by wall time.
 
-use fringe::case::load;
-use fringe::fidelity::Fidelity;
-use fringe::tradeoff::{self, Budget, Outcome, TradeoffRow, WallTime};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::load;
+use fringe::harness::tradeoff::{self, Budget, Outcome, TradeoffRow, WallTime};
 use std::path::PathBuf;
 
 fn library_case(name: &str) -> load::Case {
@@ -190,12 +190,12 @@ fn wall_time_spread() {
 #[test]
 fn report_page_shows_the_verdicts() {
     let dir = tempfile::tempdir().unwrap();
-    let page = fringe::report::html::index_html(dir.path()).unwrap();
+    let page = fringe::output::report::html::index_html(dir.path()).unwrap();
     assert!(!page.contains("id=\"tradeoff\""), "no tradeoff run yet");
     std::fs::create_dir_all(dir.path().join("tradeoff")).unwrap();
     let line = "young_paper: cheapest setting within 1e-9: paper_rules <tie>";
     std::fs::write(dir.path().join("tradeoff/summary.txt"), format!("{line}\n")).unwrap();
-    let page = fringe::report::html::index_html(dir.path()).unwrap();
+    let page = fringe::output::report::html::index_html(dir.path()).unwrap();
     assert!(page.contains("id=\"tradeoff\""), "section missing");
     assert!(
         page.contains("paper_rules &lt;tie&gt;") && page.contains("tradeoff/tradeoff.csv"),

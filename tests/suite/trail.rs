@@ -5,7 +5,7 @@
 use crate::common;
 
 use common::config;
-use fringe::trail::Trail;
+use fringe::optics::trail::Trail;
 use proptest::prelude::*;
 
 /// One step of a program: push a value onto trail `i`, or clone trail `i` into a new slot.

@@ -2,9 +2,9 @@
 //! valid scene"): closed forms take their media from the scene, traced values and closed forms
 //! are the same observable, and a rigid motion of a scene changes neither values nor verdicts.
 
-use fringe::case::load::{self, Case};
-use fringe::case::run::{self, CaseResult};
-use fringe::fidelity::Fidelity;
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::load::{self, Case};
+use fringe::harness::case::run::{self, CaseResult};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 
@@ -80,7 +80,10 @@ fn a_film_on_a_substrate_is_compared_as_power_transmittance() {
     let r = run::run_with(&parse(&reflected), false).unwrap();
     let t = run::run_with(&parse(&transmitted), false).unwrap();
     assert_passes("transmitted", &t);
-    assert_eq!(t.observable, fringe::observable::Observable::Transmittance);
+    assert_eq!(
+        t.observable,
+        fringe::optics::observable::Observable::Transmittance
+    );
     let (rv, tv) = (
         &r.metrics[0].traced[&Fidelity::Vector],
         &t.metrics[0].traced[&Fidelity::Vector],
@@ -322,7 +325,7 @@ fn references_must_match_their_scene() {
 /// not fail a passing case.
 #[test]
 fn every_library_case_sees_errors_of_its_tolerance() {
-    use fringe::case::detection::Floor;
+    use fringe::harness::case::detection::Floor;
     for file in crate::support::library::case_files() {
         let case = load::load(&file).unwrap();
         let r = run::run(&case).unwrap();
@@ -384,7 +387,7 @@ fn a_gaussian_spectrum_is_judged_by_its_own_sampled_sum() {
             "thickness {t_nm} nm: reference {:e}, the sampled sum {sum:e}",
             m.analytic[k]
         );
-        let gamma = fringe::analytic::coherence::gaussian_visibility(ds, lambda0, fwhm);
+        let gamma = fringe::harness::analytic::coherence::gaussian_visibility(ds, lambda0, fwhm);
         let continuous = a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * gamma * (k0 * ds).cos();
         sampling_error = sampling_error.max((continuous - sum).abs() / peak);
     }

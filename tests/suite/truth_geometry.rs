@@ -6,11 +6,11 @@
 //! (`tools/truth_geometry_mpmath.py` → `tests/data/truth_geometry_mpmath.csv`), or with an
 //! identity of the scene.
 
-use fringe::case::build;
-use fringe::case::load::{self, Case};
-use fringe::case::run::{self, CaseResult};
-use fringe::fidelity::Fidelity;
-use fringe::path::{EventKind, PathError, Target};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::build;
+use fringe::harness::case::load::{self, Case};
+use fringe::harness::case::run::{self, CaseResult};
+use fringe::trace::path::{EventKind, PathError, Target};
 use fringe::trace::{self, Arrival, Failure};
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};

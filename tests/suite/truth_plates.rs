@@ -6,11 +6,11 @@
 //! of `tools/two_beam_mpmath.py` at 50 digits for these exact f64 inputs), never from the
 //! tracer.
 
-use fringe::analytic::plate::TwoBeamPlate;
-use fringe::case::{build, load, run};
-use fringe::fidelity::Fidelity;
-use fringe::path::Target;
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::analytic::plate::TwoBeamPlate;
+use fringe::harness::case::{build, load, run};
 use fringe::trace;
+use fringe::trace::path::Target;
 use std::path::{Path, PathBuf};
 
 fn found(name: &str) -> load::Case {

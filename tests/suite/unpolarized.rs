@@ -6,12 +6,12 @@
 //! (`TwoBeamPlate::intensity_unpolarized_basis_free`, its own 1-D geometry and Fresnel
 //! kernels), and the same scene traced in a rotated frame.
 
-use fringe::analytic::plate::TwoBeamPlate;
-use fringe::fidelity::Fidelity;
-use fringe::material::Medium;
-use fringe::path::{EnumerationLimits, Target};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::analytic::plate::TwoBeamPlate;
+use fringe::optics::material::Medium;
 use fringe::scene::Scene;
-use fringe::source::{Channel, ChannelField, Emitter, Polarization, Source};
+use fringe::scene::source::{Channel, ChannelField, Emitter, Polarization, Source};
+use fringe::trace::path::{EnumerationLimits, Target};
 use fringe::trace::{self, Arrival, TraceSettings};
 use glam::{DMat3, DQuat, DVec3};
 use proptest::prelude::*;
@@ -290,7 +290,7 @@ fn basis_free_light_does_not_depend_on_the_dipole_axes() {
     };
     let carried = |arr: &[Arrival], channels: &[Channel], p: DVec3| {
         let mut out = Vec::new();
-        let mut seen: Vec<*const fringe::path::SolvedPath> = Vec::new();
+        let mut seen: Vec<*const fringe::trace::path::SolvedPath> = Vec::new();
         for a in arr {
             if seen.contains(&Arc::as_ptr(&a.path)) {
                 continue;
@@ -303,7 +303,7 @@ fn basis_free_light_does_not_depend_on_the_dipole_axes() {
                 f64::INFINITY,
                 &a.path,
                 &Target::Point(p),
-                fringe::interaction::CoefficientModel::Vector,
+                fringe::optics::interaction::CoefficientModel::Vector,
                 |k, ray| {
                     out.push(Arrival {
                         source: 0,
@@ -362,7 +362,7 @@ fn basis_free_light_does_not_depend_on_the_dipole_axes() {
 /// model only, and that model needs one. Each misuse is refused at its JSON path, naming the fix.
 #[test]
 fn the_case_format_names_the_unpolarized_model_and_refuses_misuse() {
-    use fringe::case::load;
+    use fringe::harness::case::load;
     let root = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"));
     let path = root.join("cases/michelson.json");
     let text = std::fs::read_to_string(&path).unwrap();
@@ -373,7 +373,8 @@ fn the_case_format_names_the_unpolarized_model_and_refuses_misuse() {
         load::parse(&path, &doc.to_string())
     };
     let case = with(&mut doc, serde_json::json!({"unpolarized": {}})).unwrap();
-    let built = fringe::case::build::build_scene(&case.spec.scene, &Default::default()).unwrap();
+    let built =
+        fringe::harness::case::build::build_scene(&case.spec.scene, &Default::default()).unwrap();
     assert_eq!(
         built.scene.sources[0].polarization,
         Polarization::Unpolarized
@@ -383,7 +384,8 @@ fn the_case_format_names_the_unpolarized_model_and_refuses_misuse() {
         serde_json::json!({"unpolarized": {"model": "paper_two_channel", "reference": [0, 2, 0]}}),
     )
     .unwrap();
-    let built = fringe::case::build::build_scene(&case.spec.scene, &Default::default()).unwrap();
+    let built =
+        fringe::harness::case::build::build_scene(&case.spec.scene, &Default::default()).unwrap();
     assert_eq!(
         built.scene.sources[0].polarization,
         Polarization::UnpolarizedTwoChannel {
@@ -422,7 +424,7 @@ fn the_case_format_names_the_unpolarized_model_and_refuses_misuse() {
 /// closed forms differ by α²/2-sized amounts the comparison resolves.
 #[test]
 fn young_slits_with_basis_free_light_match_their_closed_form() {
-    use fringe::analytic::young;
+    use fringe::harness::analytic::young;
     let d = 500.0 * LAMBDA;
     let l = 1000.0 * d;
     let (s1, s2) = (

@@ -18,11 +18,11 @@
 use crate::common;
 
 use common::EPS;
-use fringe::fidelity::Fidelity;
-use fringe::material::Medium;
-use fringe::path::{EnumerationLimits, Sequence, SolveOptions, Target};
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::optics::material::Medium;
 use fringe::scene::Scene;
-use fringe::source::{Emitter, Polarization, Source};
+use fringe::scene::source::{Emitter, Polarization, Source};
+use fringe::trace::path::{EnumerationLimits, Sequence, SolveOptions, Target};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
 use std::f64::consts::TAU;
@@ -168,9 +168,9 @@ fn spreading_weights_the_fringes() {
 #[test]
 fn tir_two_beam_fringes_use_one_time_convention() {
     use common::{field_norm, ref_fresnel};
-    use fringe::geometry::Plane;
-    use fringe::path::{Event, EventKind};
+    use fringe::scene::geometry::Plane;
     use fringe::trace::Plan;
+    use fringe::trace::path::{Event, EventKind};
     use num_complex::Complex64;
     let (lambda, n) = (550e-9, 1.5);
     for (s_pol, reference) in [(true, DVec3::Y), (false, DVec3::Z)] {

@@ -3,10 +3,10 @@
 //! unpolarized plane wave at `theta` from the normal in the x–z plane, observed at the specular
 //! far-field direction (wavefronts referred to (0, 0, 1 mm)).
 
-use fringe::material::Medium;
-use fringe::path::Target;
+use fringe::optics::material::Medium;
 use fringe::scene::Scene;
-use fringe::source::{Emitter, Polarization, Source};
+use fringe::scene::source::{Emitter, Polarization, Source};
+use fringe::trace::path::Target;
 use glam::DVec3;
 
 /// The scene and its specular far-field target.

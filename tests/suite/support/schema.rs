@@ -1,5 +1,5 @@
 //! A small JSON Schema (draft 2020-12) validator for the subset `cases/schema.json` (generated
-//! by schemars from src/case/spec.rs) uses: `$ref` into `$defs`, `type` (one name or a list),
+//! by schemars from src/harness/case/spec.rs) uses: `$ref` into `$defs`, `type` (one name or a list),
 //! `properties`, `required`, `additionalProperties` (false or a schema), `minProperties`,
 //! `items`, `minItems`, `maxItems`, `uniqueItems`, `oneOf`, `anyOf`, `enum`, `const`,
 //! `minimum`, `maximum`, `exclusiveMinimum`, and `pattern` of the form `^[class]{m,n}$` or

@@ -1,0 +1,378 @@
+//! Plane-parallel plates and films: the Airy multi-beam sum (B&W §7.6.1, §1.6.4; docs/PHYSICS.md §5
+//! "Plate / film, multi-beam (Airy)"), its truncation, and the two-beam reflection of a point
+//! source (paper §4.2, Fig. 4 left) with the geometry solved here in one dimension.
+
+use super::precise;
+use crate::optics::fresnel::fresnel;
+use num_complex::Complex64;
+use twofloat::TwoFloat;
+
+/// s or p.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Pol {
+    /// s: the field ⊥ the plane of incidence.
+    S,
+    /// p: the field in the plane of incidence.
+    P,
+}
+
+/// Fresnel r, t for one polarization from the cosines on both sides (P1)–(P4), in the
+/// conventions of [`crate::optics::fresnel::fresnel`] (r_p = (n_b cos_a − n_a cos_b)/(n_b cos_a + n_a cos_b));
+/// `cos_b` imaginary beyond a critical angle. Equal indices: no interface (r = 0, t = 1).
+fn coefficients(
+    n_a: f64,
+    cos_a: Complex64,
+    n_b: f64,
+    cos_b: Complex64,
+    pol: Pol,
+) -> (Complex64, Complex64) {
+    if n_a == n_b {
+        return (Complex64::from(0.0), Complex64::from(1.0));
+    }
+    let (num, den) = match pol {
+        Pol::S => (cos_a * n_a - cos_b * n_b, cos_a * n_a + cos_b * n_b),
+        Pol::P => (cos_a * n_b - cos_b * n_a, cos_a * n_b + cos_b * n_a),
+    };
+    if den == Complex64::from(0.0) {
+        // Exactly grazing incidence on a face (cos θa = cos θb = 0 is impossible for n_a ≠ n_b
+        // unless both vanish): R = 1, T = 0, the limit of (P1)–(P4).
+        let f = fresnel(n_a, n_b, cos_a.re);
+        return match pol {
+            Pol::S => (f.r_s, f.t_s),
+            Pol::P => (f.r_p, f.t_p),
+        };
+    }
+    (num / den, cos_a * (2.0 * n_a) / den)
+}
+
+/// A three-medium stack n1 | n2 (thickness d) | n3 lit from n1 at angle θ1.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Film {
+    /// Index of the incidence medium.
+    pub n1: f64,
+    /// Index of the film.
+    pub n2: f64,
+    /// Index of the exit medium.
+    pub n3: f64,
+    /// Film thickness d, m.
+    pub thickness_m: f64,
+}
+
+/// The quantities of the Airy sum at one angle, wavelength and polarization.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct AiryTerms {
+    /// Reflection amplitude at face 1 from medium 1 (docs/PHYSICS.md §1 convention).
+    pub r12: Complex64,
+    /// Transmission amplitude through face 1 into the film.
+    pub t12: Complex64,
+    /// Reflection amplitude at face 1 from inside the film.
+    pub r21: Complex64,
+    /// Transmission amplitude through face 1 out of the film.
+    pub t21: Complex64,
+    /// Reflection amplitude at face 2 from inside the film.
+    pub r23: Complex64,
+    /// Transmission amplitude through face 2 into medium 3.
+    pub t23: Complex64,
+    /// Round-trip phase β = (4π/λ) n2 d cos θ2.
+    pub beta: f64,
+    /// cos θ1 and cos θ3 (for the power ratio of transmission).
+    pub cos1: f64,
+    /// cos θ3.
+    pub cos3: f64,
+    /// e^{iβ} and e^{iβ/2}, from β/2π = 2 n2 d cos θ2/λ formed in double-double and reduced to
+    /// a fraction of a cycle before rounding (the f64 `beta` of a 1 mm plate carries ~1e-12 rad).
+    pub round_trip: Complex64,
+    /// e^{iβ/2}.
+    pub half_trip: Complex64,
+}
+
+impl Film {
+    /// The Fresnel coefficients and round-trip phase at incidence cos θ1 (must not be TIR at
+    /// the 1→2 interface).
+    pub fn terms(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> AiryTerms {
+        // Every cosine from cos θ1 by Snell's law, in double-double: cos²θk = 1 − (n1/nk)²
+        // sin²θ1. (Taking cos θ3 from a rounded cos θ2, as a chain of Fresnel kernels would,
+        // loses digits where the wave leaves the film near grazing: an ulp of cos θ2 moved R by
+        // 5e-15 at θ1 = 89.7°, found by the 50-digit test.)
+        let one = TwoFloat::from(1.0);
+        let sin2 = one - TwoFloat::new_mul(cos_theta_1, cos_theta_1);
+        let cos_sq = |nk: f64| {
+            let ratio = precise::div(TwoFloat::from(self.n1), TwoFloat::from(nk));
+            one - sin2 * ratio * ratio
+        };
+        let c2sq = cos_sq(self.n2);
+        let cos2_dd = if c2sq.hi() > 0.0 {
+            c2sq.sqrt()
+        } else {
+            TwoFloat::from(0.0)
+        };
+        let c3sq = cos_sq(self.n3);
+        let cos2 = f64::from(cos2_dd);
+        // Beyond the substrate's critical angle cos θ3 = +i sqrt(−cos²θ3) (e^{-iωt}, P5–P6).
+        let c3 = if c3sq.hi() >= 0.0 {
+            Complex64::from(f64::from(c3sq.sqrt()))
+        } else {
+            Complex64::new(0.0, f64::from((-c3sq).sqrt()))
+        };
+        let cos3 = c3.re;
+        let c1 = Complex64::from(cos_theta_1);
+        let c2 = Complex64::from(cos2);
+        let (r12, t12) = coefficients(self.n1, c1, self.n2, c2, pol);
+        let (r21, t21) = coefficients(self.n2, c2, self.n1, c1, pol);
+        let (r23, t23) = coefficients(self.n2, c2, self.n3, c3, pol);
+        // β/2π in double-double: 2 n2 d cos θ2/λ without rounding; whole cycles removed
+        // before the phasor.
+        let optical = cos2_dd * TwoFloat::new_mul(2.0 * self.n2, self.thickness_m);
+        AiryTerms {
+            r12,
+            t12,
+            r21,
+            t21,
+            r23,
+            t23,
+            beta: 4.0 * std::f64::consts::PI * self.n2 * self.thickness_m * cos2 / lambda_m,
+            cos1: cos_theta_1,
+            cos3,
+            round_trip: precise::path_phasor(optical, lambda_m),
+            half_trip: precise::path_phasor(optical * 0.5, lambda_m),
+        }
+    }
+
+    /// Airy reflection amplitude r = r12 + t12 t21 r23 e^{iβ}/(1 − r21 r23 e^{iβ}) (docs/PHYSICS.md §5),
+    /// evaluated with the Stokes relations r21 = −r12, t12 t21 = 1 − r12² (exact identities of
+    /// (P1)–(P4)) as (r12 + r23 e^{iβ})/(1 + r12 r23 e^{iβ}): the sum of the series as written
+    /// relies on those identities holding to the last bit, and near grazing, where R → 1 and
+    /// t12 t21 → 0, f64 coefficients that satisfy them only to rounding cost ~40 ε of R
+    /// (found by the 50-digit test, `tests/suite/closed_form_precision.rs`).
+    pub fn r(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let e = a.round_trip;
+        (a.r12 + a.r23 * e) / (1.0 + a.r12 * a.r23 * e)
+    }
+
+    /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}), with r21 = −r12.
+    pub fn t(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        a.t12 * a.t23 * a.half_trip / (1.0 + a.r12 * a.r23 * a.round_trip)
+    }
+
+    /// Reflectance R = |r|².
+    pub fn reflectance(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> f64 {
+        self.r(cos_theta_1, lambda_m, pol).norm_sqr()
+    }
+
+    /// Transmittance T = (n3 cos θ3)/(n1 cos θ1)·|t|² (0 when the wave cannot leave into n3).
+    pub fn transmittance(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> f64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        if a.cos3 == 0.0 {
+            return 0.0;
+        }
+        self.n3 * a.cos3 / (self.n1 * cos_theta_1) * self.t(cos_theta_1, lambda_m, pol).norm_sqr()
+    }
+
+    /// The reflection amplitude summed over the first `orders` reflected beams only: order 0 is
+    /// r12, order m ≥ 1 is t12 t21 r23 (r21 r23)^{m−1} e^{imβ} (m round trips).
+    pub fn r_truncated(
+        &self,
+        cos_theta_1: f64,
+        lambda_m: f64,
+        pol: Pol,
+        orders: usize,
+    ) -> Complex64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        if orders == 0 {
+            return Complex64::default();
+        }
+        // Orders 1 … orders−1 summed as a geometric series in closed form,
+        // t12 t21 r23 e^{iβ} (1 − q^{orders−1})/(1 − q), q = r21 r23 e^{iβ}, with the Stokes
+        // relations r21 = −r12, t12 t21 = (1 − r12)(1 + r12) as in [`Film::r`]: summing term by
+        // term rounds each of ~100 terms of a high-finesse film and left the partial sum
+        // 1.5e-15 off a 50-digit one (R ≈ 0.7), more than the tail it is meant to show.
+        let first = (1.0 - a.r12) * (1.0 + a.r12) * a.r23 * a.round_trip;
+        let q = -a.r12 * a.r23 * a.round_trip;
+        let n = u32::try_from(orders - 1).unwrap_or(u32::MAX);
+        if q == Complex64::from(1.0) {
+            return a.r12 + first * f64::from(n);
+        }
+        a.r12 + first * (1.0 - q.powu(n)) / (1.0 - q)
+    }
+
+    /// Bound on the amplitude of the reflected orders left out after `orders` beams:
+    /// |t12 t21 r23| |r21 r23|^{orders−1}/(1 − |r21 r23|) (geometric tail).
+    pub fn r_tail_bound(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, orders: usize) -> f64 {
+        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let q = (a.r21 * a.r23).norm();
+        if q >= 1.0 {
+            return f64::INFINITY;
+        }
+        let first = (a.t12 * a.t21 * a.r23).norm();
+        first * q.powi(orders.saturating_sub(1) as i32) / (1.0 - q)
+    }
+
+    /// The number of reflected orders needed so that the amplitude tail bound is ≤ `epsilon`:
+    /// cost grows like log(1/ε)/log(1/|r21 r23|).
+    pub fn orders_for_bound(
+        &self,
+        cos_theta_1: f64,
+        lambda_m: f64,
+        pol: Pol,
+        epsilon: f64,
+    ) -> usize {
+        let mut n = 1;
+        while self.r_tail_bound(cos_theta_1, lambda_m, pol, n) > epsilon && n < 100_000 {
+            n += 1;
+        }
+        n
+    }
+}
+
+/// Geometry of the two-beam point-source plate (paper Fig. 4 left): source at height `h_src`
+/// above the top face, observation point at height `h_obs`, horizontal separation `x`, plate
+/// thickness `d`, indices n1 (ambient, also below) and n2.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TwoBeamPlate {
+    /// Ambient index (above and below the plate).
+    pub n1: f64,
+    /// Plate index.
+    pub n2: f64,
+    /// Plate thickness d, m.
+    pub thickness_m: f64,
+    /// Source height above the top face, m.
+    pub h_src_m: f64,
+    /// Observation point height above the top face, m.
+    pub h_obs_m: f64,
+}
+
+/// One of the two beams at the observation point.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Beam {
+    /// Angle of incidence on the top face (rad).
+    pub theta: f64,
+    /// Optical path (m).
+    pub optical_path_m: f64,
+    /// Amplitude factor for s (product of Fresnel coefficients).
+    pub amp_s: Complex64,
+    /// Amplitude factor for p.
+    pub amp_p: Complex64,
+}
+
+impl TwoBeamPlate {
+    /// Beam 1: reflection at the top face (image method): tan θ = x/(h_s + h_o).
+    pub fn beam_top(&self, x_m: f64) -> Beam {
+        let h = self.h_src_m + self.h_obs_m;
+        let theta = x_m.atan2(h);
+        // cos θ = h/√(x² + h²) keeps its relative precision near grazing, where cos(atan2)
+        // loses it (an absolute error of 1e-16 on cos θ ≈ 1e-4).
+        let f = fresnel(self.n1, self.n2, h / x_m.hypot(h));
+        Beam {
+            theta,
+            optical_path_m: self.n1 * x_m.hypot(h),
+            amp_s: f.r_s,
+            amp_p: f.r_p,
+        }
+    }
+
+    /// Beam 2: refracted in, reflected at the bottom face, refracted out. Parametrised by the
+    /// entry point's lateral offset `a` (no trigonometry): first leg L1 = √(a² + h_s²),
+    /// sin θ = a/L1, sin θt = (n1/n2) sin θ, exit at X_e = a + 2 d tan θt, last leg
+    /// L3 = √((x − X_e)² + h_o²). `a` solves X_e + h_o tan θ = x by bisection; the optical path
+    /// n1 L1 + 2 n2 d/cos θt + n1 L3 of the broken ray through the computed entry point is
+    /// stationary there (Fermat), so the root's rounding enters only to second order, and it is
+    /// summed in double-double ([`super::precise`]), so the beam's path keeps ~1e-30 m.
+    pub fn beam_bottom(&self, x_m: f64) -> Beam {
+        self.beam_bottom_precise(x_m).0
+    }
+
+    /// [`TwoBeamPlate::beam_bottom`] with its optical path in double-double.
+    fn beam_bottom_precise(&self, x_m: f64) -> (Beam, TwoFloat) {
+        let (hs, ho, d) = (self.h_src_m, self.h_obs_m, self.thickness_m);
+        let (n1, n2) = (self.n1, self.n2);
+        // Landing offset of the ray entering at lateral a (f64, for the root only).
+        let lateral = |a: f64| {
+            let l1 = a.hypot(hs);
+            let st = n1 / n2 * a / l1;
+            let tan_t = st / (1.0 - st * st).sqrt();
+            a + 2.0 * d * tan_t + ho * a / hs - x_m
+        };
+        let a0 = super::bisect(0.0, x_m, lateral);
+        // The entry point's first leg, Snell angle and exit point in double-double. n1/n2 is an
+        // input ratio, rounded once (a Snell angle off by 1e-16 moves the path's interior points
+        // along their planes: second order in the optical path).
+        let offset = |a: TwoFloat| {
+            let l1 = (a * a + TwoFloat::new_mul(hs, hs)).sqrt();
+            let st = precise::div(a * (n1 / n2), l1);
+            let ct = (TwoFloat::from(1.0) - st * st).sqrt();
+            (l1, ct, a + precise::div(st, ct) * (2.0 * d))
+        };
+        // One Newton step puts the entry point where f64 cannot: near grazing the amplitudes
+        // depend on it to first order (cos θ = h_s/L1 is small), the optical path does not.
+        let a = {
+            let h = 1e-7 * a0.max(hs);
+            let slope = (lateral(a0 + h) - lateral(a0 - h)) / (2.0 * h);
+            let a0 = TwoFloat::from(a0);
+            let miss = offset(a0).2 + a0 * (ho / hs) - x_m;
+            a0 - miss / slope
+        };
+        let (l1, ct, x_e) = offset(a);
+        let dx = TwoFloat::from(x_m) - x_e;
+        let l3 = (dx * dx + TwoFloat::new_mul(ho, ho)).sqrt();
+        let op = l1 * n1 + precise::div(TwoFloat::from(2.0 * d) * n2, ct) + l3 * n1;
+        let cos_i = f64::from(precise::div(TwoFloat::from(hs), l1));
+        let cos_t = f64::from(ct);
+        let a = f64::from(a);
+        // The ray leaves the plate into n1 at the angle it entered (Snell's law both ways), so
+        // every face sees the pair (cos θ, cos θt), both known to double-double: the bottom
+        // reflection and the exit take the outside cosine from the entry, not from
+        // cos²θ = 1 − (n2/n1)² sin²θt, which a plate much denser than its ambient turns into
+        // cancellation (n2/n1 = 1000 near grazing: cos θt ≈ 1 − 2e-7 rounded by 1e-16 moved
+        // cos²θ by 6e-7 of itself and I by 1.2e-8, against a 50-digit evaluation;
+        // `tests/suite/truth_plates.rs`).
+        let (ci, ct) = (Complex64::from(cos_i), Complex64::from(cos_t));
+        let amp = |pol| {
+            let (_, t12) = coefficients(n1, ci, n2, ct, pol);
+            let (r23, t21) = coefficients(n2, ct, n1, ci, pol);
+            t12 * r23 * t21
+        };
+        let beam = Beam {
+            theta: a.atan2(hs),
+            optical_path_m: f64::from(op),
+            amp_s: amp(Pol::S),
+            amp_p: amp(Pol::P),
+        };
+        (beam, op)
+    }
+
+    /// Two-beam intensity for an unpolarized unit-intensity source whose channels are s and p
+    /// at every ray (observation points in one plane of incidence), spreading off:
+    /// I = ½|a1s e^{iφ1} + a2s e^{iφ2}|² + ½(|a1p|² + |a2p|² + 2 Re(a1p a2p* e^{i(φ1−φ2)}) cos(θ1 − θ2)),
+    /// where the p fields p_k = d_k × s of the two arriving rays make the angle θ1 − θ2.
+    pub fn intensity_unpolarized(&self, x_m: f64, lambda_m: f64) -> f64 {
+        self.unpolarized(x_m, lambda_m, 1)
+    }
+
+    /// [`TwoBeamPlate::intensity_unpolarized`] for basis-free unpolarized light (three
+    /// incoherent dipoles of weight 1/2, docs/PHYSICS.md §3): the s fields are those of the
+    /// dipole along s for both beams; the in-plane dipoles give the launch p fields
+    /// (p_k·a) p_k, correlated as Σ_a (p1·a)(p2·a) = cos(θ1 − θ2), so the p cross term carries
+    /// cos²(θ1 − θ2) where the two-channel model's has cos(θ1 − θ2).
+    pub fn intensity_unpolarized_basis_free(&self, x_m: f64, lambda_m: f64) -> f64 {
+        self.unpolarized(x_m, lambda_m, 2)
+    }
+
+    /// The two models: the p cross term with cos(θ1 − θ2) to the power `p_overlap_power`.
+    fn unpolarized(&self, x_m: f64, lambda_m: f64, p_overlap_power: i32) -> f64 {
+        let (b1, (b2, op2)) = (self.beam_top(x_m), self.beam_bottom_precise(x_m));
+        let op1 = precise::distance(
+            glam::DVec3::new(x_m, self.h_src_m, 0.0),
+            glam::DVec3::new(0.0, -self.h_obs_m, 0.0),
+        ) * self.n1;
+        let ph = precise::path_phasor(op1 - op2, lambda_m);
+        let i_s = (b1.amp_s * ph + b2.amp_s).norm_sqr();
+        let i_p = b1.amp_p.norm_sqr()
+            + b2.amp_p.norm_sqr()
+            + 2.0
+                * (b1.amp_p * b2.amp_p.conj() * ph).re
+                * (b1.theta - b2.theta).cos().powi(p_overlap_power);
+        0.5 * (i_s + i_p)
+    }
+}

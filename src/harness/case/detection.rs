@@ -1,0 +1,258 @@
+//! What a case's gate can see: a known error is injected into one traced path and the smallest
+//! one that makes the primary reference fail its `vector` tolerance is the case's *detection
+//! floor* (issue "truth across every valid scene", item 6). A case whose floor is far above its
+//! tolerance could not tell a wrong tracer from a right one: it is decoration, and `check`
+//! fails it (floor > [`FLOOR_FACTOR`] × tolerance).
+//!
+//! The fault is applied to the arrival after the first at every probe point and wavelength (the
+//! second beam of a two-beam scene, the first internal reflection of a plate): a phase offset
+//! of ε rad, or an amplitude factor 1 + ε. Tracing is done once; only the accumulation is
+//! repeated while ε is bisected on a log scale, over at most [`MAX_POINTS`] probe points spread
+//! evenly (fewer points can only miss an error, so the floor is never optimistic).
+
+use super::build;
+use super::load::{Case, CaseError};
+use super::reference::MetricKind;
+use super::run::{CaseResult, trace_point};
+use crate::accumulate::fidelity::Fidelity;
+use crate::accumulate::{Accumulator, Contribution};
+use crate::optics::double_double::DoubleDouble;
+use crate::optics::ray::field_of;
+use crate::trace::Arrival;
+use glam::DVec3;
+use num_complex::Complex64;
+use rayon::prelude::*;
+
+/// Probe points the floor is measured on, at most.
+pub const MAX_POINTS: usize = 48;
+/// A floor above this multiple of the tolerance fails the case.
+pub const FLOOR_FACTOR: f64 = 10.0;
+
+/// The smallest injected errors the primary reference's `vector` gate catches (`None`: not
+/// caught even at ε = 1).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct DetectionFloors {
+    /// Phase offset on one path (rad).
+    pub phase_rad: Floor,
+    /// Relative amplitude error on one path.
+    pub amplitude: Floor,
+    /// The primary reference's `vector` tolerance.
+    pub tolerance: f64,
+}
+
+/// The detection floor of one kind of error.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Floor {
+    /// The smallest error that fails the gate.
+    Caught(f64),
+    /// Not caught even at ε = 1: the case cannot see this error.
+    Blind,
+    /// The error does not change the observable, by physics (a phase where nothing
+    /// interferes, anything where the reference vanishes everywhere).
+    NotApplicable(&'static str),
+}
+
+/// An error injected into one path.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum Fault {
+    /// Phase offset (rad).
+    Phase(f64),
+    /// Amplitude factor 1 + ε.
+    Amplitude(f64),
+}
+
+/// The arrivals of one probe point at every spectral sample: (weight × observable factor,
+/// arrivals).
+type PointArrivals = Vec<(f64, Vec<Arrival>)>;
+
+/// The floors of a case's primary reference, for intensity references with a `vector`
+/// tolerance (`None` for spacing, retardance and visibility references: one path's phase or
+/// amplitude does not enter them the same way).
+pub fn detection_floors(
+    case: &Case,
+    result: &CaseResult,
+) -> Result<Option<DetectionFloors>, CaseError> {
+    let Some(primary) = result.metrics.first() else {
+        return Ok(None);
+    };
+    let Some(&tolerance) = primary.tolerances.get(&Fidelity::Vector) else {
+        return Ok(None);
+    };
+    if primary.kind != MetricKind::Intensity || !primary.traced.contains_key(&Fidelity::Vector) {
+        return Ok(None);
+    }
+    let scale = primary
+        .analytic
+        .iter()
+        .fold(1e-15f64, |m, a| m.max(a.abs()));
+    let points = build::probe_points(&case.spec.probe);
+    let stride = points.len().div_ceil(MAX_POINTS).max(1);
+    let sampled: Vec<usize> = (0..points.len()).step_by(stride).collect();
+    let traced: Vec<PointArrivals> = sampled
+        .par_iter()
+        .map(|&i| {
+            let mut per_lambda = Vec::new();
+            trace_point(case, &points[i], |_, _, sample| {
+                per_lambda.push((sample.weight * sample.factor, sample.arrivals));
+                Ok(())
+            })?;
+            Ok(per_lambda)
+        })
+        .collect::<Result<_, CaseError>>()?;
+    let coherent = traced.iter().flatten().any(|(_, arr)| interfere(arr));
+    // What a fault touches, taken from the arrivals once (the bisection evaluates the
+    // deviation ~80 times).
+    let faultable: Vec<Vec<(f64, Vec<FaultRay>)>> = traced
+        .iter()
+        .map(|per_lambda| {
+            per_lambda
+                .iter()
+                .map(|(w, arr)| (*w, fault_rays(arr)))
+                .collect()
+        })
+        .collect();
+    drop(traced);
+    let analytic: Vec<f64> = sampled.iter().map(|&i| primary.analytic[i]).collect();
+    let deviation = |fault: Fault| -> f64 {
+        faultable
+            .par_iter()
+            .zip(&analytic)
+            .map_init(
+                || (Accumulator::new(), Vec::new()),
+                |(acc, scratch), (per_lambda, a)| {
+                    let value: f64 = per_lambda
+                        .iter()
+                        .map(|(w, rays)| w * faulted_intensity(rays, fault, acc, scratch))
+                        .sum();
+                    (value - a).abs() / scale
+                },
+            )
+            .reduce(|| 0.0, f64::max)
+    };
+    let floor = |make: fn(f64) -> Fault| -> Floor {
+        // Log-bisection for the smallest ε in [1e-16, 1] that is caught.
+        let caught = |e: f64| deviation(make(e)) > tolerance;
+        if !caught(1.0) {
+            return Floor::Blind;
+        }
+        let (mut lo, mut hi) = (-16.0f64, 0.0f64);
+        if caught(10f64.powf(lo)) {
+            return Floor::Caught(10f64.powf(lo));
+        }
+        for _ in 0..40 {
+            let mid = 0.5 * (lo + hi);
+            if caught(10f64.powf(mid)) {
+                hi = mid;
+            } else {
+                lo = mid;
+            }
+        }
+        Floor::Caught(10f64.powf(hi))
+    };
+    if scale <= 1e-12 {
+        let why = "the closed form vanishes everywhere (an extinction case)";
+        return Ok(Some(DetectionFloors {
+            phase_rad: Floor::NotApplicable(why),
+            amplitude: Floor::NotApplicable(why),
+            tolerance,
+        }));
+    }
+    Ok(Some(DetectionFloors {
+        phase_rad: if coherent {
+            floor(Fault::Phase)
+        } else {
+            Floor::NotApplicable("no two arrivals interfere: phases do not enter")
+        },
+        amplitude: floor(Fault::Amplitude),
+        tolerance,
+    }))
+}
+
+/// The chosen path of a fault: the path carrying the second-largest intensity (the weaker of
+/// two beams, the first internal reflection of a plate), or the only one.
+fn chosen_path(arrivals: &[Arrival]) -> Option<*const crate::trace::path::SolvedPath> {
+    let mut paths: Vec<(*const crate::trace::path::SolvedPath, f64)> = Vec::new();
+    for a in arrivals {
+        let key = std::sync::Arc::as_ptr(&a.path);
+        match paths.iter_mut().find(|(k, _)| *k == key) {
+            Some((_, i)) => *i += a.vector.intensity(),
+            None => paths.push((key, a.vector.intensity())),
+        }
+    }
+    paths.sort_by(|a, b| b.1.total_cmp(&a.1));
+    paths.get(1).or(paths.first()).map(|&(k, _)| k)
+}
+
+/// What the `vector` contribution of one arrival is made of, and whether the fault hits it.
+struct FaultRay {
+    coherence_id: u64,
+    optical_path: DoubleDouble,
+    wavelength_m: f64,
+    jones: [Complex64; 2],
+    x: DVec3,
+    y: DVec3,
+    chosen: bool,
+}
+
+/// The arrivals of one spectral sample as [`faulted_intensity`] needs them.
+fn fault_rays(arrivals: &[Arrival]) -> Vec<FaultRay> {
+    let chosen = chosen_path(arrivals);
+    arrivals
+        .iter()
+        .map(|a| FaultRay {
+            coherence_id: a.vector.coherence_id,
+            optical_path: a.vector.optical_path,
+            wavelength_m: a.vector.wavelength_m,
+            jones: a.vector.jones,
+            x: a.vector.x,
+            y: a.vector.y,
+            chosen: Some(std::sync::Arc::as_ptr(&a.path)) == chosen,
+        })
+        .collect()
+}
+
+/// The `vector` intensity of the arrivals with `fault` applied to every channel of the chosen
+/// path ([`chosen_path`]): the same arithmetic as tracing rays with the fault (a phase offset
+/// added to the optical path in double-double, an amplitude factor on the Jones vector) and
+/// [`crate::trace::intensity`] of them, without copying the arrivals.
+fn faulted_intensity(
+    rays: &[FaultRay],
+    fault: Fault,
+    acc: &mut Accumulator,
+    scratch: &mut Vec<Contribution>,
+) -> f64 {
+    let path = |r: &FaultRay| {
+        let mut op = r.optical_path;
+        if let (true, Fault::Phase(e)) = (r.chosen, fault) {
+            op += (e / std::f64::consts::TAU * r.wavelength_m).into();
+        }
+        op
+    };
+    let reference = rays.first().map_or(DoubleDouble::ZERO, path);
+    scratch.clear();
+    scratch.extend(rays.iter().map(|r| {
+        let jones = match (r.chosen, fault) {
+            (true, Fault::Amplitude(e)) => [r.jones[0] * (1.0 + e), r.jones[1] * (1.0 + e)],
+            _ => r.jones,
+        };
+        Contribution {
+            coherence_id: r.coherence_id,
+            phase_cycles: crate::trace::phase_cycles(path(r), reference, r.wavelength_m),
+            field: field_of(jones, r.x, r.y),
+        }
+    }));
+    acc.clear();
+    acc.extend(scratch);
+    acc.intensity()
+}
+
+/// Whether two arrivals of one point are mutually coherent (share a non-zero coherence id):
+/// only then can a phase error show.
+fn interfere(arrivals: &[Arrival]) -> bool {
+    arrivals.iter().enumerate().any(|(i, a)| {
+        a.vector.coherence_id != crate::optics::ray::INCOHERENT
+            && arrivals[i + 1..]
+                .iter()
+                .any(|b| b.vector.coherence_id == a.vector.coherence_id)
+    })
+}

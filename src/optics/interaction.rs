@@ -1,0 +1,457 @@
+//! A ray meets an interface: the reflected and refracted children (paper §3.3–3.5).
+//!
+//! The parent is advanced to the hit point (adding n·L to its optical path), its 3D field is
+//! split into s and p in the frame of docs/PHYSICS.md §1, each component is multiplied by its Fresnel
+//! coefficient, and each child carries the frame (X, Y) = (s, p_child), so (X, Y, dir) stays
+//! right-handed. Children inherit or lose the coherence id according to the surface's
+//! [`CoherenceRules`].
+
+use crate::optics::double_double::{DoubleDouble, two_prod};
+use crate::optics::fresnel::{self, FresnelCoefficients};
+use crate::optics::material::CoherenceRules;
+use crate::optics::ray::{Field3, INCOHERENT, LedgerEntry, Ray};
+use glam::DVec3;
+use num_complex::Complex64;
+
+/// Which amplitude coefficients an interaction applies (the two polarized rungs of the
+/// fidelity ladder, docs/PHYSICS.md §4).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum CoefficientModel {
+    /// Complex Fresnel (P1)–(P6).
+    Vector,
+    /// The paper's |r|, |t| with π-jump rules (P7, P8) and its TIR phases.
+    PaperRules,
+}
+
+/// What is on the two sides of the surface.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum SurfaceOptics {
+    /// An interface between two lossless media; `n_front` on the side the normal points to.
+    Dielectric {
+        /// Index on the normal's side.
+        n_front: f64,
+        /// Index behind.
+        n_back: f64,
+    },
+    /// A perfectly conducting mirror (reflects from either side, transmits nothing).
+    IdealMirror,
+    /// An ideal thin beam splitter of power reflectance R in a uniform medium of index `n`.
+    Splitter {
+        /// Power reflectance R in [0, 1].
+        reflectance: f64,
+        /// Index on both sides.
+        n: f64,
+    },
+}
+
+/// The local description of one ray–surface encounter.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct InterfaceHit {
+    /// Index of the surface in its scene (for the ledger).
+    pub surface: usize,
+    /// Where the ray meets the surface (m).
+    pub point: DVec3,
+    /// Unit normal of the surface, pointing to its front side.
+    pub normal: DVec3,
+    /// What is on the two sides.
+    pub optics: SurfaceOptics,
+    /// What the children keep of the parent's coherence.
+    pub coherence: CoherenceRules,
+}
+
+/// The result of an interaction.
+#[derive(Clone, Debug)]
+pub struct Children {
+    /// The reflected ray.
+    pub reflected: Ray,
+    /// `None` under total internal reflection and for mirrors.
+    pub refracted: Option<Ray>,
+    /// The coefficients that were applied.
+    pub coefficients: FresnelCoefficients,
+    /// |d_i·N|.
+    pub cos_theta_i: f64,
+    /// Index on the incident side.
+    pub n1: f64,
+    /// Index on the far side.
+    pub n2: f64,
+}
+
+fn dot(e: &Field3, v: DVec3) -> Complex64 {
+    e[0] * v.x + e[1] * v.y + e[2] * v.z
+}
+
+/// The (incident-side, far-side) indices for a ray travelling along `dir` in a medium of index
+/// `current` (a mirror has the ray's medium on both sides as far as the ray is concerned).
+pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3, current: f64) -> (f64, f64) {
+    match optics {
+        SurfaceOptics::Dielectric { n_front, n_back } => {
+            if dir.dot(normal) < 0.0 {
+                (n_front, n_back)
+            } else {
+                (n_back, n_front)
+            }
+        }
+        SurfaceOptics::IdealMirror => (current, current),
+        SurfaceOptics::Splitter { n, .. } => (n, n),
+    }
+}
+
+/// What every ray of direction `d_i` in a medium of index `index` meets at a hit, whatever its
+/// polarization: the indices, the coefficients of the model and the s vector.
+struct Encounter {
+    d_i: DVec3,
+    /// The s unit vector (docs/PHYSICS.md §1), `None` at normal incidence, where each ray's own X
+    /// decides ([`fresnel::s_direction`]).
+    s: Option<DVec3>,
+    n1: f64,
+    n2: f64,
+    cos_theta_i: f64,
+    coefficients: FresnelCoefficients,
+    /// (n1 cos θi)² and (n2 cos θt)² (negative under TIR) in double-double: what the
+    /// children carry to the next parallel face ([`Ray::normal_q2`]).
+    q2_i: DoubleDouble,
+    q2_t: DoubleDouble,
+}
+
+/// The squared normal wavevector components (n1 cos θi)² and (n2 cos θt)² (the second
+/// negative under total internal reflection) of a ray of direction `d_i` in index `n1` meeting
+/// a face of unit normal `normal` into index `n2`, in double-double.
+///
+/// `carried` is the ray's [`Ray::normal_q2`]: used when `normal` is the same line (bitwise ±),
+/// since Snell's law conserves the tangential wavevector and (n2 cos θt)² = (n1 cos θi)² +
+/// n2² − n1² is then exact (docs/PHYSICS.md §8). Otherwise cos²θi = (d_i·N)²/(|d_i|²|N|²) of
+/// the f64 vectors in double-double: the direction as given, whichever of cos θi and sin θi is
+/// the small one. The tracer ([`interact`]) and the path solver (`path::step_planes`) both
+/// call this, so they agree on every total internal reflection.
+pub fn normal_wavevector_squares(
+    d_i: DVec3,
+    normal: DVec3,
+    (n1, n2): (f64, f64),
+    carried: Option<(DVec3, DoubleDouble)>,
+) -> (DoubleDouble, DoubleDouble) {
+    let q2_i = match carried {
+        Some((m, q2)) if m == normal || m == -normal => q2,
+        _ => {
+            let c = DoubleDouble::dot(d_i, normal);
+            let cos2 = (c * c) / (DoubleDouble::dot(d_i, d_i) * DoubleDouble::dot(normal, normal));
+            cos2 * two_prod(n1, n1)
+        }
+    };
+    (q2_i, q2_i + two_prod(n2, n2) - two_prod(n1, n1))
+}
+
+/// The refracted direction η (d_i − (d_i·N_o) N_o) − cos θt N_o (Snell's law in vector form,
+/// η = n1/n2, N_o the normal facing the incident side, docs/PHYSICS.md §1) for a given
+/// cos θt ≥ 0, normalized. The tangential part is formed before it is scaled by η, so for
+/// η ≫ 1 (into a much thinner medium) the normal part is not the small difference of η-sized
+/// terms that η d_i + (η cos θi − cos θt) N_o rounds.
+pub fn snell_direction(d_i: DVec3, normal: DVec3, (n1, n2): (f64, f64), cos_t: f64) -> DVec3 {
+    let n_o = if d_i.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    };
+    let tangential = d_i - d_i.dot(n_o) * n_o;
+    ((n1 / n2) * tangential - cos_t * n_o).normalize()
+}
+
+impl Encounter {
+    /// `carried`: the ray's [`Ray::normal_q2`]; used when `hit`'s normal is the same line
+    /// (bitwise ±), else q² is formed from d_i·N of the f64 vectors (exact products).
+    fn new(
+        d_i: DVec3,
+        index: f64,
+        carried: Option<(DVec3, DoubleDouble)>,
+        hit: &InterfaceHit,
+        model: CoefficientModel,
+    ) -> Self {
+        let (n1, n2) = indices_for(hit.optics, hit.normal, d_i, index);
+        // Snell's law as conservation of the tangential wavevector: the normal components obey
+        // (n2 cos θt)² = (n1 cos θi)² + (n2 − n1)(n2 + n1), formed exactly in double-double
+        // (docs/PHYSICS.md §8), so a cosine that is a small difference of large squares (light
+        // leaving a film at near-grazing outside) keeps its digits.
+        let (q2_i, q2_t) = normal_wavevector_squares(d_i, hit.normal, (n1, n2), carried);
+        let cos_theta_i = (q2_i.sqrt().to_f64() / n1).min(1.0);
+        let coefficients = match (hit.optics, model) {
+            (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
+            (SurfaceOptics::Splitter { reflectance, .. }, _) => {
+                fresnel::ideal_splitter(reflectance, d_i.dot(hit.normal) < 0.0)
+            }
+            (SurfaceOptics::Dielectric { .. }, CoefficientModel::Vector) => {
+                if n1 == n2 {
+                    fresnel::fresnel(n1, n2, cos_theta_i)
+                } else {
+                    fresnel::fresnel_with_cos2_t(n1, n2, cos_theta_i, q2_t.to_f64() / (n2 * n2))
+                }
+            }
+            (SurfaceOptics::Dielectric { .. }, CoefficientModel::PaperRules) => {
+                fresnel::paper_rules(n1, n2, cos_theta_i)
+            }
+        };
+        Encounter {
+            d_i,
+            s: fresnel::s_of_plane_of_incidence(d_i, hit.normal),
+            n1,
+            n2,
+            cos_theta_i,
+            coefficients,
+            q2_i,
+            q2_t,
+        }
+    }
+
+    /// The s vector for a ray whose frame has X axis `x`: `fresnel::s_direction(d_i, N, x)`.
+    fn s_for(&self, x: DVec3) -> DVec3 {
+        self.s
+            .unwrap_or_else(|| fresnel::s_at_normal_incidence(self.d_i, x))
+    }
+
+    /// The components (a_s, a_p) of the field `e` along s and p_i = d_i × s.
+    fn amplitudes(&self, e: &Field3, s: DVec3) -> (Complex64, Complex64) {
+        let p_i = self.d_i.cross(s);
+        (dot(e, s), dot(e, p_i))
+    }
+}
+
+/// The parent ray at the hit point, split into s and p, with the coefficients of the model.
+struct Split {
+    encounter: Encounter,
+    /// The s unit vector of this ray (docs/PHYSICS.md §1).
+    s: DVec3,
+    /// The parent's field components along s and p_i.
+    a_s: Complex64,
+    a_p: Complex64,
+}
+
+/// Advances `parent` to the hit point and splits its field.
+fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
+    parent.advance_to(hit.point);
+    // Step 1: the coefficients and the s/p frame of the incident ray.
+    let encounter = Encounter::new(parent.dir, parent.index, parent.normal_q2, hit, model);
+    let s = encounter.s_for(parent.x);
+    // Step 2: the field along s and p_i.
+    let (a_s, a_p) = encounter.amplitudes(&parent.field(), s);
+    Split {
+        encounter,
+        s,
+        a_s,
+        a_p,
+    }
+}
+
+/// One child of an encounter, apart from the parent's field: its direction, the coefficients
+/// (c_s, c_p) it applies, its medium, whether it keeps coherence and its ledger entry.
+struct Branch {
+    dir: DVec3,
+    /// The child's (n cos θ)² about the hit's normal ([`Ray::normal_q2`]).
+    q2: DoubleDouble,
+    c: [Complex64; 2],
+    index: f64,
+    keep: bool,
+    entry: LedgerEntry,
+}
+
+/// Step 3: the reflected branch.
+fn reflected(en: &Encounter, hit: &InterfaceHit) -> Branch {
+    let c = &en.coefficients;
+    Branch {
+        dir: fresnel::reflect(en.d_i, hit.normal),
+        q2: en.q2_i,
+        c: [c.r_s, c.r_p],
+        index: en.n1,
+        keep: hit.coherence.reflected_keeps,
+        entry: LedgerEntry::Reflection {
+            surface: hit.surface,
+            r_s: c.r_s,
+            r_p: c.r_p,
+            tir: c.total_internal_reflection,
+        },
+    }
+}
+
+/// Step 4: the refracted branch, unless TIR or a mirror.
+fn refracted(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
+    if matches!(hit.optics, SurfaceOptics::IdealMirror) {
+        return None;
+    }
+    let c = &en.coefficients;
+    let dir = if matches!(hit.optics, SurfaceOptics::Dielectric { .. }) && en.n1 != en.n2 {
+        // Snell's law in vector form with cos θt from the double-double (n2 cos θt)² (the
+        // path solver's TIR verdict and direction, `path::step_planes`).
+        if en.q2_t.hi < 0.0 {
+            return None;
+        }
+        snell_direction(
+            en.d_i,
+            hit.normal,
+            (en.n1, en.n2),
+            en.q2_t.sqrt().to_f64() / en.n2,
+        )
+    } else {
+        fresnel::refract(en.d_i, hit.normal, en.n1, en.n2)?
+    };
+    Some(Branch {
+        dir,
+        q2: en.q2_t,
+        c: [c.t_s, c.t_p],
+        index: en.n2,
+        keep: hit.coherence.refracted_keeps,
+        entry: LedgerEntry::Refraction {
+            surface: hit.surface,
+            t_s: c.t_s,
+            t_p: c.t_p,
+        },
+    })
+}
+
+/// The branch a path follows (`reflect`: the reflected one).
+fn followed(en: &Encounter, hit: &InterfaceHit, reflect: bool) -> Option<Branch> {
+    if reflect {
+        Some(reflected(en, hit))
+    } else {
+        refracted(en, hit)
+    }
+}
+
+/// The polarization of a child: direction `b.dir`, frame (s, dir × s), Jones (c_s a_s, c_p a_p).
+fn child_frame(b: &Branch, s: DVec3, a_s: Complex64, a_p: Complex64) -> JonesFrame {
+    JonesFrame {
+        x: s,
+        y: b.dir.cross(s),
+        jones: [b.c[0] * a_s, b.c[1] * a_p],
+    }
+}
+
+/// Turns the split parent `ray` into its child along `b`.
+fn child(ray: &mut Ray, sp: &Split, hit: &InterfaceHit, b: Branch) {
+    ray.dir = b.dir;
+    ray.normal_q2 = Some((hit.normal, b.q2));
+    child_frame(&b, sp.s, sp.a_s, sp.a_p).apply_to(ray);
+    ray.index = b.index;
+    if !b.keep && ray.coherence_id != INCOHERENT {
+        ray.coherence_id = INCOHERENT;
+        ray.ledger
+            .entries
+            .push(LedgerEntry::CoherenceLost { surface: None });
+    }
+    ray.ledger.entries.push(b.entry);
+}
+
+/// Split `ray` at `hit` into its reflected and refracted children using `model`.
+pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Children {
+    let mut parent = ray.clone();
+    let sp = split(&mut parent, hit, model);
+    let refracted = refracted(&sp.encounter, hit).map(|b| {
+        let mut r = parent.clone();
+        child(&mut r, &sp, hit, b);
+        r
+    });
+    child(&mut parent, &sp, hit, reflected(&sp.encounter, hit));
+    let en = &sp.encounter;
+    Children {
+        reflected: parent,
+        refracted,
+        coefficients: en.coefficients,
+        cos_theta_i: en.cos_theta_i,
+        n1: en.n1,
+        n2: en.n2,
+    }
+}
+
+/// The one child of `ray` at `hit` that a path follows (`reflect`: the reflected one, else the
+/// refracted one, `None` under TIR or at a mirror): the same ray [`interact`] returns, without
+/// building the other child.
+pub fn interact_along(
+    mut ray: Ray,
+    hit: &InterfaceHit,
+    model: CoefficientModel,
+    reflect: bool,
+) -> Option<Ray> {
+    interact_along_in_place(&mut ray, hit, model, reflect).then_some(ray)
+}
+
+/// [`interact_along`] on the ray in place: false, with the ray partly updated, where
+/// [`interact_along`] gives `None`.
+pub fn interact_along_in_place(
+    ray: &mut Ray,
+    hit: &InterfaceHit,
+    model: CoefficientModel,
+    reflect: bool,
+) -> bool {
+    let sp = split(ray, hit, model);
+    let Some(b) = followed(&sp.encounter, hit, reflect) else {
+        return false;
+    };
+    child(ray, &sp, hit, b);
+    true
+}
+
+/// The polarization of a ray: its frame axes X, Y and its Jones vector (see [`Ray`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct JonesFrame {
+    /// Unit frame axis X (⊥ the ray).
+    pub x: DVec3,
+    /// Unit frame axis Y (so that (X, Y, dir) is right-handed).
+    pub y: DVec3,
+    /// The Jones vector (J_x, J_y): the field is J_x X + J_y Y.
+    pub jones: [Complex64; 2],
+}
+
+impl JonesFrame {
+    /// The polarization of `ray`.
+    pub fn of(ray: &Ray) -> Self {
+        JonesFrame {
+            x: ray.x,
+            y: ray.y,
+            jones: ray.jones,
+        }
+    }
+
+    /// Gives `ray` this polarization.
+    pub fn apply_to(&self, ray: &mut Ray) {
+        ray.x = self.x;
+        ray.y = self.y;
+        ray.jones = self.jones;
+    }
+
+    /// The complex 3D field `J_x X + J_y Y` ([`Ray::field`]).
+    pub fn field(&self) -> Field3 {
+        crate::optics::ray::field_of(self.jones, self.x, self.y)
+    }
+}
+
+/// [`interact_along`] for rays that differ only in polarization (the channels of one source
+/// along one path): `lead`, and one more ray per entry of `others` that equals `lead` except for
+/// its [`JonesFrame`]. The encounter (indices, coefficients, s vector, child direction, ledger
+/// entry) is computed once; `lead` and each entry of `others` end up bitwise as
+/// [`interact_along`] leaves its own ray, including at normal incidence, where each ray's X
+/// picks its s. Returns false, with the rays partly updated, where [`interact_along`] gives
+/// `None`.
+pub fn interact_along_shared(
+    lead: &mut Ray,
+    others: &mut [JonesFrame],
+    hit: &InterfaceHit,
+    model: CoefficientModel,
+    reflect: bool,
+) -> bool {
+    lead.advance_to(hit.point);
+    let encounter = Encounter::new(lead.dir, lead.index, lead.normal_q2, hit, model);
+    let Some(b) = followed(&encounter, hit, reflect) else {
+        return false;
+    };
+    for o in others.iter_mut() {
+        let s = encounter.s_for(o.x);
+        let (a_s, a_p) = encounter.amplitudes(&o.field(), s);
+        *o = child_frame(&b, s, a_s, a_p);
+    }
+    let s = encounter.s_for(lead.x);
+    let (a_s, a_p) = encounter.amplitudes(&lead.field(), s);
+    let sp = Split {
+        encounter,
+        s,
+        a_s,
+        a_p,
+    };
+    child(lead, &sp, hit, b);
+    true
+}

@@ -1,0 +1,598 @@
+//! Outputs of a check: the verdict table, CSV profiles, the JSON summary and golden files.
+//!
+//! What a kill at any moment leaves behind:
+//! - every file is written atomically ([`write_atomic`]: a temporary `.fringe-tmp-*` file in
+//!   the same folder, synced, then renamed over the old one), so each file is complete-old or
+//!   complete-new; a leftover temporary file is removed by the next run that writes there
+//!   ([`remove_stale_temp_files`]);
+//! - the golden files of one `--bless` are one set ([`bless_set`]): staged in
+//!   `<golden>/.fringe-bless/`, made durable, committed by a `COMMIT` list, then renamed into
+//!   place. A kill before the commit leaves the old set (the next run deletes the stage); a kill
+//!   after it is rolled forward by the next run ([`recover_bless`]), so every run reads one
+//!   whole set;
+//! - writers of one folder (`--out`, the golden folder) hold an exclusive lock on the folder
+//!   ([`lock_dir`]) while they write: two concurrent runs on one `--out` write one after the
+//!   other, each leaving a whole set of reports.
+
+pub mod html;
+pub mod image;
+pub mod plot;
+pub mod renderers;
+pub mod tradeoff_plot;
+
+use crate::accumulate::fidelity::Fidelity;
+use crate::harness::case::run::CaseResult;
+use serde::Serialize;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// Prefix of the temporary files of [`write_atomic`].
+pub const TEMP_PREFIX: &str = ".fringe-tmp-";
+
+/// Folder (inside the golden folder) where a bless stages its set, and its commit mark.
+pub const BLESS_STAGE: &str = ".fringe-bless";
+const BLESS_COMMIT: &str = "COMMIT";
+
+/// Write `bytes` to `path` atomically, creating the parent folder.
+pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
+    let dir = path
+        .parent()
+        .filter(|p| !p.as_os_str().is_empty())
+        .unwrap_or(Path::new("."));
+    std::fs::create_dir_all(dir)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)?;
+    std::io::Write::write_all(&mut tmp, bytes)?;
+    tmp.as_file().sync_all()?;
+    // Reports are for reading by anyone (tempfile creates 0600 files).
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::PermissionsExt;
+        tmp.as_file()
+            .set_permissions(std::fs::Permissions::from_mode(0o644))?;
+    }
+    tmp.persist(path).map_err(|e| e.error)?;
+    Ok(())
+}
+
+/// Make `dir` (created if absent) and show that a file can be written in it, before any work
+/// whose results would go there. Leaves at most the (empty) folder behind.
+pub fn probe_writable(dir: &Path) -> std::io::Result<()> {
+    std::fs::create_dir_all(dir)?;
+    let mut tmp = tempfile::Builder::new()
+        .prefix(TEMP_PREFIX)
+        .tempfile_in(dir)?;
+    std::io::Write::write_all(&mut tmp, b"fringe")?;
+    tmp.as_file().sync_all()?;
+    Ok(())
+}
+
+/// An exclusive lock on the folder `dir` (created if absent), held until the returned file is
+/// dropped; waits while another fringe process holds it. The folder itself is locked (`flock`),
+/// so no lock file is left behind.
+pub fn lock_dir(dir: &Path) -> std::io::Result<std::fs::File> {
+    std::fs::create_dir_all(dir)?;
+    let f = std::fs::File::open(dir)?;
+    f.lock()?;
+    Ok(f)
+}
+
+/// Remove leftover temporary files of interrupted atomic writes in `dir` (not recursive):
+/// `.fringe-tmp-*`, and `.tmp*` of versions before the prefix. Call it holding [`lock_dir`].
+/// Returns how many were removed.
+pub fn remove_stale_temp_files(dir: &Path) -> std::io::Result<usize> {
+    let Ok(rd) = std::fs::read_dir(dir) else {
+        return Ok(0);
+    };
+    let mut removed = 0;
+    for e in rd {
+        let e = e?;
+        let name = e.file_name();
+        let name = name.to_string_lossy();
+        if (name.starts_with(TEMP_PREFIX) || name.starts_with(".tmp")) && e.file_type()?.is_file() {
+            std::fs::remove_file(e.path())?;
+            removed += 1;
+        }
+    }
+    Ok(removed)
+}
+
+/// Sync a folder's entries (renames in it) to disk.
+fn sync_dir(dir: &Path) -> std::io::Result<()> {
+    std::fs::File::open(dir)?.sync_all()
+}
+
+/// Finish or undo an interrupted [`bless_set`] in `golden_dir`: with a commit mark, rename the
+/// staged files into place (roll forward); without one, delete the stage (roll back). Also
+/// removes stale temporary files. Call it holding [`lock_dir`] on `golden_dir`. Returns whether
+/// there was anything to recover.
+pub fn recover_bless(golden_dir: &Path) -> std::io::Result<bool> {
+    let stage = golden_dir.join(BLESS_STAGE);
+    let stale = remove_stale_temp_files(golden_dir)? > 0;
+    if !stage.exists() {
+        return Ok(stale);
+    }
+    if let Ok(list) = std::fs::read_to_string(stage.join(BLESS_COMMIT)) {
+        for name in list.lines().filter(|l| !l.is_empty()) {
+            let staged = stage.join(name);
+            if staged.exists() {
+                std::fs::rename(&staged, golden_dir.join(name))?;
+            }
+        }
+        sync_dir(golden_dir)?;
+    }
+    std::fs::remove_dir_all(&stage)?;
+    Ok(true)
+}
+
+/// Write the golden files `files` (file name, text) into `golden_dir` as one set: stage every
+/// file (synced), commit the list, then rename each into place (see the module docs for what a
+/// kill leaves). Call it holding [`lock_dir`] on `golden_dir`.
+pub fn bless_set(golden_dir: &Path, files: &[(String, String)]) -> std::io::Result<()> {
+    recover_bless(golden_dir)?;
+    let stage = golden_dir.join(BLESS_STAGE);
+    std::fs::create_dir_all(&stage)?;
+    for (name, text) in files {
+        write_atomic(&stage.join(name), text.as_bytes())?;
+    }
+    let list: String = files.iter().map(|(n, _)| format!("{n}\n")).collect();
+    // The commit point: from here on the new set is what the golden folder holds.
+    write_atomic(&stage.join(BLESS_COMMIT), list.as_bytes())?;
+    sync_dir(&stage)?;
+    for (name, _) in files {
+        std::fs::rename(stage.join(name), golden_dir.join(name))?;
+    }
+    sync_dir(golden_dir)?;
+    std::fs::remove_dir_all(&stage)?;
+    Ok(())
+}
+
+/// One line of the verdict table.
+#[derive(Clone, Debug, Serialize, PartialEq)]
+pub struct Row {
+    pub case: String,
+    pub fidelity: String,
+    pub metric: String,
+    pub max_abs_dev: f64,
+    pub rms_dev: f64,
+    /// `None`: reported for information, no verdict.
+    pub tolerance: Option<f64>,
+    /// `None` for information rows.
+    pub pass: Option<bool>,
+    pub seconds: f64,
+    /// Where the largest deviation occurs, or why a row failed.
+    pub note: String,
+}
+
+/// The verdict rows of a case (golden rows are added by the caller).
+pub fn rows(r: &CaseResult) -> Vec<Row> {
+    let mut out = Vec::new();
+    for m in &r.metrics {
+        for (level, _) in m.traced.iter() {
+            let Some(st) = m.stats(*level) else { continue };
+            let tol = m.tolerances.get(level).copied();
+            out.push(Row {
+                case: r.name.clone(),
+                fidelity: level.to_string(),
+                metric: m.name.clone(),
+                max_abs_dev: st.max_abs_dev,
+                rms_dev: st.rms_dev,
+                tolerance: tol,
+                pass: tol.map(|t| st.max_abs_dev <= t),
+                seconds: r.trace_seconds,
+                note: match m.derived_tolerance(&r.rounding, 0.0) {
+                    // What the arithmetic allows (docs/PHYSICS.md §8): the fuzz gate's tolerance.
+                    Some(d) if *level == Fidelity::Vector => {
+                        format!("max at {:.6e}; the arithmetic allows {d:.1e}", st.at)
+                    }
+                    _ => format!("max at {:.6e}", st.at),
+                },
+            });
+        }
+    }
+    // What the primary reference's gate can see: an injected error of the floor's size on one
+    // path fails it; a floor beyond FLOOR_FACTOR × tolerance means the case cannot see errors.
+    if let (Some(d), Some(primary)) = (&r.detection, r.metrics.first()) {
+        use crate::harness::case::detection::{FLOOR_FACTOR, Floor};
+        for (what, floor) in [("phase", d.phase_rad), ("amplitude", d.amplitude)] {
+            let limit = FLOOR_FACTOR * d.tolerance;
+            let unit = if what == "phase" { "rad" } else { "relative" };
+            let (value, tolerance, pass, note) = match floor {
+                Floor::Caught(f) => (
+                    f,
+                    Some(limit),
+                    Some(f <= limit),
+                    format!(
+                        "smallest {what} error on one path ({unit}) that fails {} at tolerance {:e}",
+                        primary.name, d.tolerance
+                    ),
+                ),
+                Floor::Blind => (
+                    f64::INFINITY,
+                    Some(limit),
+                    Some(false),
+                    format!(
+                        "a {what} error of 1 on one path does not fail {}",
+                        primary.name
+                    ),
+                ),
+                // Nothing to detect (no interference for a phase, a vanishing closed form):
+                // no row, so every row of the table stays a finite number.
+                Floor::NotApplicable(_) => continue,
+            };
+            out.push(Row {
+                case: r.name.clone(),
+                fidelity: "vector".into(),
+                metric: format!("detect_{what}"),
+                max_abs_dev: value,
+                rms_dev: value,
+                tolerance,
+                pass,
+                seconds: 0.0,
+                note,
+            });
+        }
+    }
+    // The auto choice must be exact for the primary reference.
+    if let Some(primary) = r.metrics.first() {
+        let (level, why) = (&r.auto.level, &r.auto.reason);
+        let tol = primary.tolerances.get(&Fidelity::Vector).copied();
+        if let (Some(st), Some(t)) = (primary.stats(*level), tol) {
+            out.push(Row {
+                case: r.name.clone(),
+                fidelity: format!("auto={level}"),
+                metric: primary.name.clone(),
+                max_abs_dev: st.max_abs_dev,
+                rms_dev: st.rms_dev,
+                tolerance: Some(t),
+                pass: Some(st.max_abs_dev <= t),
+                seconds: r.trace_seconds,
+                note: why.clone(),
+            });
+        }
+    }
+    out
+}
+
+/// Rows of text fields as CSV text with a header line, written by the `csv` crate (which quotes
+/// a field holding a comma, a quote or a line break; the numbers are formatted by the caller so
+/// that golden files keep their 17 significant digits).
+pub fn csv_text(header: &[&str], rows: impl IntoIterator<Item = Vec<String>>) -> String {
+    let mut w = csv::WriterBuilder::new().from_writer(Vec::new());
+    // Writing into memory cannot fail; a record of the wrong length is a programming error
+    // caught by the tests that read these files back.
+    let mut put = |fields: &[String]| {
+        w.write_record(fields)
+            .expect("CSV into memory: records of one length");
+    };
+    put(&header.iter().map(|h| h.to_string()).collect::<Vec<_>>());
+    for r in rows {
+        put(&r);
+    }
+    let bytes = w.into_inner().expect("CSV into memory");
+    String::from_utf8(bytes).expect("CSV of UTF-8 fields")
+}
+
+/// `profile.csv`: per reference, coordinate, analytic, then traced and deviation per level.
+pub fn profile_csv(r: &CaseResult) -> String {
+    let levels = &r.levels;
+    let mut header: Vec<String> = ["reference", "quantity", "coordinate", "analytic"]
+        .map(String::from)
+        .to_vec();
+    for l in levels {
+        header.push(format!("traced_{l}"));
+        header.push(format!("deviation_{l}"));
+    }
+    let mut rows = Vec::new();
+    for m in &r.metrics {
+        let devs: Vec<Option<Vec<f64>>> = levels.iter().map(|l| m.deviations(*l)).collect();
+        for i in 0..m.coordinates.len() {
+            let mut row = vec![
+                m.name.clone(),
+                m.quantity(r.observable).to_string(),
+                format!("{:.17e}", m.coordinates[i]),
+                format!("{:.17e}", m.analytic[i]),
+            ];
+            for (k, l) in levels.iter().enumerate() {
+                match (m.traced.get(l), &devs[k]) {
+                    (Some(t), Some(d)) => {
+                        row.push(format!("{:.17e}", t[i]));
+                        row.push(format!("{:.6e}", d[i]));
+                    }
+                    _ => row.extend([String::new(), String::new()]),
+                }
+            }
+            rows.push(row);
+        }
+    }
+    let header: Vec<&str> = header.iter().map(String::as_str).collect();
+    csv_text(&header, rows)
+}
+
+/// `convergence.csv` of Airy cases.
+pub fn convergence_csv(r: &CaseResult) -> String {
+    csv_text(
+        &[
+            "orders",
+            "internal_reflections",
+            "max_abs_dev",
+            "tail_bound",
+        ],
+        r.convergence.iter().map(|c| {
+            vec![
+                c.orders.to_string(),
+                c.internal_reflections.to_string(),
+                format!("{:.6e}", c.max_abs_dev),
+                format!("{:.6e}", c.bound),
+            ]
+        }),
+    )
+}
+
+/// The header of a golden file.
+const GOLDEN_HEADER: [&str; 4] = ["reference", "fidelity", "coordinate", "traced"];
+
+/// The golden file: every traced value of every reference and level.
+pub fn golden_csv(r: &CaseResult) -> String {
+    let mut rows = Vec::new();
+    for m in &r.metrics {
+        for (l, t) in &m.traced {
+            for (x, v) in m.coordinates.iter().zip(t) {
+                rows.push(vec![
+                    m.name.clone(),
+                    l.to_string(),
+                    format!("{x:.17e}"),
+                    format!("{v:.17e}"),
+                ]);
+            }
+        }
+    }
+    csv_text(&GOLDEN_HEADER, rows)
+}
+
+/// Compare a result with its golden text. `Err(Corrupt)` if the file does not parse,
+/// `Err(Mismatch)` naming the first differing row; deviations are relative to each reference's
+/// largest traced magnitude.
+#[derive(Debug, Clone, PartialEq)]
+pub enum GoldenError {
+    Corrupt(String),
+    Mismatch(String),
+}
+
+pub fn compare_golden(r: &CaseResult, golden: &str, tolerance: f64) -> Result<f64, GoldenError> {
+    let mut reader = csv::ReaderBuilder::new()
+        .has_headers(false)
+        .from_reader(golden.as_bytes());
+    let mut records = reader.records();
+    let header_ok = matches!(records.next(), Some(Ok(h)) if h.iter().eq(GOLDEN_HEADER));
+    if !header_ok {
+        return Err(GoldenError::Corrupt(
+            "line 1: expected the header `reference,fidelity,coordinate,traced`".into(),
+        ));
+    }
+    let mut expected = Vec::new();
+    for (k, record) in records.enumerate() {
+        let bad = |got: String| {
+            GoldenError::Corrupt(format!(
+                "line {}: expected `reference,fidelity,coordinate,traced` with finite numbers, got {got}",
+                k + 2
+            ))
+        };
+        let f = record.map_err(|e| bad(e.to_string()))?;
+        let parse = |x: &str| x.parse::<f64>().ok().filter(|v| v.is_finite());
+        match (f.len(), f.get(2).and_then(parse), f.get(3).and_then(parse)) {
+            (4, Some(x), Some(v)) => expected.push((f[0].to_string(), f[1].to_string(), x, v)),
+            _ => return Err(bad(format!("{:?}", f.iter().collect::<Vec<_>>()))),
+        }
+    }
+    let mut actual = Vec::new();
+    for m in &r.metrics {
+        let scale = m
+            .traced
+            .values()
+            .flatten()
+            .fold(0.0f64, |a, v| a.max(v.abs()))
+            .max(f64::MIN_POSITIVE);
+        for (l, t) in &m.traced {
+            for (x, v) in m.coordinates.iter().zip(t) {
+                actual.push((m.name.clone(), l.to_string(), *x, *v, scale));
+            }
+        }
+    }
+    if actual.len() != expected.len() {
+        return Err(GoldenError::Mismatch(format!(
+            "{} golden rows, {} traced rows (probe or references changed?)",
+            expected.len(),
+            actual.len()
+        )));
+    }
+    let mut worst = 0.0f64;
+    for (a, e) in actual.iter().zip(&expected) {
+        if a.0 != e.0 || a.1 != e.1 || (a.2 - e.2).abs() > 1e-9 * (1.0 + e.2.abs()) {
+            return Err(GoldenError::Mismatch(format!(
+                "row ({}, {}, {:e}) where the golden file has ({}, {}, {:e})",
+                a.0, a.1, a.2, e.0, e.1, e.2
+            )));
+        }
+        let dev = (a.3 - e.3).abs() / a.4;
+        worst = worst.max(dev);
+        if dev > tolerance {
+            return Err(GoldenError::Mismatch(format!(
+                "{} at {} {:e}: traced {:e}, golden {:e}, relative deviation {:e} > {:e}",
+                a.0, a.1, a.2, a.3, e.3, dev, tolerance
+            )));
+        }
+    }
+    Ok(worst)
+}
+
+/// Roundings a traced optical path may carry, in units of the f64 unit roundoff, per unit of
+/// its length: every segment length (differences, a dot product, a square root) and the sum of
+/// segments round a few times; 8 covers them with room.
+const PATH_ROUNDINGS: f64 = 8.0;
+
+/// The tolerance of a case's golden comparison: the case's `golden_tolerance`, or the
+/// conditioning bound of its traced values when that is larger. Golden files are not bit for
+/// bit reproducible across CPUs (libm's sin, cos, exp and pow differ in the last bit between
+/// implementations, e.g. glibc's FMA variants): a traced value is reproducible only to its
+/// conditioning. An interference intensity I = |Σ E_k e^{iφ_k}|² with phases φ_k = 2π s_k/λ
+/// (P10) moves by |δI| ≤ 2 (Σ|E_k|)² max|δφ_k| when its phases move by δφ_k, and a path s
+/// rounded with relative error ε·u moves its phase by 2π n s ε u/λ: relative to the profile's
+/// largest value (≈ (Σ|E_k|)² at a bright fringe) the deviation is at most 2 Φ ε u with
+/// Φ = 2π n_max S/λ_min, S = (m + 2 + 2 × surfaces) × D the longest path (segments × the
+/// diameter D of the scene's points: sources, probe points, surface points), m the internal
+/// reflections traced. Michelson (S ≈ 0.6 m at 600 nm): Φ ≈ 6e6 rad, bound ≈ 1.2e-8.
+pub fn golden_tolerance(case: &crate::harness::case::load::Case, r: &CaseResult) -> f64 {
+    use crate::harness::case::spec::{EmitterSpec, Observer, SurfaceSpec};
+    let spec = &case.spec;
+    let mut points: Vec<glam::DVec3> = Vec::new();
+    for s in &spec.scene.sources {
+        points.push(glam::DVec3::from_array(match &s.emitter {
+            EmitterSpec::Point { position_m } => *position_m,
+            EmitterSpec::Line { point_m, .. } => *point_m,
+            EmitterSpec::PlaneWave {
+                reference_point_m, ..
+            } => *reference_point_m,
+        }));
+    }
+    for s in &spec.scene.surfaces {
+        points.push(glam::DVec3::from_array(match s {
+            SurfaceSpec::Interface { point_m, .. }
+            | SurfaceSpec::Mirror { point_m, .. }
+            | SurfaceSpec::Splitter { point_m, .. }
+            | SurfaceSpec::Shield { point_m, .. }
+            | SurfaceSpec::OpaqueScreen { point_m, .. } => *point_m,
+            SurfaceSpec::Plate { top_point_m, .. } | SurfaceSpec::Wedge { top_point_m, .. } => {
+                *top_point_m
+            }
+        }));
+    }
+    for p in crate::harness::case::build::probe_points(&spec.probe) {
+        match &p.observer {
+            Observer::Point { position_m, .. } => points.push(glam::DVec3::from_array(*position_m)),
+            Observer::Direction {
+                reference_point_m, ..
+            } => points.push(glam::DVec3::from_array(*reference_point_m)),
+            Observer::FarField { .. } => {}
+        }
+    }
+    let mut diameter = 0.0f64;
+    for (i, a) in points.iter().enumerate() {
+        for b in &points[i + 1..] {
+            diameter = diameter.max((*a - *b).length());
+        }
+    }
+    // Far-field observers and thin scenes: at least the thickest slab.
+    for s in &spec.scene.surfaces {
+        if let SurfaceSpec::Plate { thickness_um, .. } | SurfaceSpec::Wedge { thickness_um, .. } = s
+        {
+            diameter = diameter.max(thickness_um * 1e-6);
+        }
+    }
+    let spectrum = crate::harness::case::build::spectrum(&spec.light, &Default::default());
+    let mut lambda_min = spectrum.iter().map(|s| s.0).fold(f64::INFINITY, f64::min);
+    if let crate::harness::case::spec::Probe::Sweep {
+        parameter: crate::harness::case::spec::SweepParameter::WavelengthNm {},
+        from,
+        to,
+        ..
+    } = &spec.probe
+    {
+        lambda_min = lambda_min.min(from.min(*to) * 1e-9);
+    }
+    let n_max = spec
+        .scene
+        .media
+        .iter()
+        .filter_map(|(name, m)| {
+            let m = crate::harness::case::build::medium(name, m);
+            spectrum
+                .iter()
+                .filter_map(|s| m.index(s.0).ok())
+                .reduce(f64::max)
+        })
+        .fold(1.0f64, f64::max);
+    let segments = (r.internal_reflections + 2 + spec.scene.surfaces.len() * 2) as f64;
+    let phase = 2.0 * std::f64::consts::PI * n_max * segments * diameter / lambda_min;
+    let bound = 2.0 * phase * PATH_ROUNDINGS * f64::EPSILON / 2.0;
+    spec.trace.golden_tolerance.max(bound)
+}
+
+/// The summary of one case for `summary.json`.
+#[derive(Serialize)]
+pub struct CaseSummary<'a> {
+    pub case: &'a str,
+    pub description: &'a str,
+    pub formula: &'a str,
+    pub auto: String,
+    pub auto_reason: &'a str,
+    pub internal_reflections: usize,
+    pub dark_points: usize,
+    pub trace_seconds: f64,
+    /// The work the preflight estimated (units of `case::run::preflight`), to compare with
+    /// `trace_seconds`.
+    pub work_units: f64,
+    pub rows: Vec<Row>,
+    /// The metrics with one value (a retardance, a fringe spacing, a visibility): the page
+    /// shows their numbers, as they have no profile to plot.
+    pub point_values: Vec<PointValue>,
+}
+
+/// A single-valued metric of a case: its closed form and what every level traced.
+#[derive(Serialize)]
+pub struct PointValue {
+    /// The reference's name in the case file.
+    pub metric: String,
+    /// What is measured, with its unit (e.g. "retardance arg E_p − arg E_s (rad)").
+    pub quantity: &'static str,
+    /// The closed-form value.
+    pub closed_form: f64,
+    /// The traced value per fidelity level (levels where the metric is undefined are absent).
+    pub traced: Vec<(String, f64)>,
+}
+
+/// The [`PointValue`]s of a case result: every metric evaluated at a single coordinate.
+pub fn point_values(r: &CaseResult) -> Vec<PointValue> {
+    r.metrics
+        .iter()
+        .filter(|m| m.analytic.len() == 1)
+        .map(|m| PointValue {
+            metric: m.name.clone(),
+            quantity: m.quantity(r.observable),
+            closed_form: m.analytic[0],
+            traced: m
+                .traced
+                .iter()
+                .filter_map(|(l, v)| Some((l.name().to_string(), *v.first()?)))
+                .collect(),
+        })
+        .collect()
+}
+
+/// Print rows as an aligned table.
+pub fn table(rows: &[Row]) -> String {
+    let mut s = String::new();
+    let _ = writeln!(
+        s,
+        "{:<26} {:<19} {:<22} {:>10} {:>10} {:>9} {:<7} {:>8}",
+        "case", "fidelity", "metric", "max|dev|", "rms dev", "tol", "verdict", "seconds"
+    );
+    for r in rows {
+        let verdict = match r.pass {
+            Some(true) => "pass",
+            Some(false) => "FAIL",
+            None => "info",
+        };
+        let tol = r
+            .tolerance
+            .map(|t| format!("{t:.0e}"))
+            .unwrap_or_else(|| "-".into());
+        let _ = writeln!(
+            s,
+            "{:<26} {:<19} {:<22} {:>10.3e} {:>10.3e} {:>9} {:<7} {:>8.3}",
+            r.case, r.fidelity, r.metric, r.max_abs_dev, r.rms_dev, tol, verdict, r.seconds
+        );
+    }
+    s
+}
