@@ -29,25 +29,43 @@
 //!
 //! One direction, each stage using only the ones before it:
 //!
-//! 1. **Scene** ([`scene::Scene`]): an ambient [`optics::material::Medium`], planar surfaces
-//!    (interfaces, plates, wedges, mirrors, splitters, shields) and sources.
-//! 2. **Sources** ([`scene::source::Source`]): point, line or plane-wave emitters, linearly polarized
-//!    or unpolarized (basis-free: three mutually incoherent dipole channels along x, y, z; or
-//!    the paper's two channels from a reference), grouped by coherence.
-//! 3. **Exact paths** ([`trace::plan`], [`trace::arrivals`], [`trace::path`]): the candidate surface
-//!    sequences of each source are discovered once per scene; for each observation point (or
-//!    far-field direction) every sequence is solved exactly, and each source channel's ray is
-//!    propagated along it through the real interactions ([`optics::interaction`]) into an
-//!    [`trace::Arrival`] — under complex Fresnel and, alongside, the paper's rules.
-//! 4. **Accumulation** ([`accumulate`]): each arrival becomes a [`accumulate::Contribution`] at
-//!    a rung of the [`accumulate::fidelity::Fidelity`] ladder ([`trace::contributions`]); contributions are
-//!    grouped by coherence id, fields summed with their path phasors, groups added in intensity
-//!    (the paper's eqs. 5–6). [`accumulate::fidelity::auto_select`] names the cheapest exact rung.
+//! 1. **Scene** ([`Scene`]): an ambient [`Medium`], planar surfaces (interfaces, plates,
+//!    wedges, mirrors, splitters, shields) and sources.
+//! 2. **Sources** ([`Source`]): point, line or plane-wave emitters, linearly polarized or
+//!    unpolarized (basis-free: three mutually incoherent dipole channels along x, y, z; or the
+//!    paper's two channels from a reference), grouped by coherence.
+//! 3. **Exact paths** ([`trace::plan`], [`trace::arrivals`], [`trace::path`]): the candidate
+//!    surface sequences of each source are discovered once per scene; for each observation
+//!    point (or far-field direction) every sequence is solved exactly, and each source
+//!    channel's ray is propagated along it through the real interactions
+//!    ([`optics::interaction`]) into an [`Arrival`] — under complex Fresnel and, alongside, the
+//!    paper's rules.
+//! 4. **Accumulation** ([`accumulate`]): each arrival becomes a [`Contribution`] at a rung of
+//!    the [`Fidelity`] ladder ([`trace::contributions`]); contributions are grouped by
+//!    coherence id, fields summed with their path phasors, groups added in intensity (the
+//!    paper's eqs. 5–6). [`accumulate::fidelity::auto_select`] names the cheapest exact rung.
 //! 5. **Observables** ([`optics::observable`]): |E|² at a point, R or T in the far field, and
 //!    quantities derived from them (retardance, fringe spacing, visibility).
-//! 6. **Comparison** ([`harness::analytic`], [`harness::case`], [`harness::check`]): closed forms evaluated independently
-//!    of the tracer, case files that pair a scene with its closed forms and tolerances, and the
-//!    gate `fringe check` with its reports ([`output::report`]).
+//! 6. **Comparison** ([`harness::analytic`], [`harness::case`], [`harness::check`]): closed
+//!    forms evaluated independently of the tracer, case files that pair a scene with its closed
+//!    forms and tolerances, and the gate `fringe check` with its reports ([`output::report`]).
+//!
+//! # Layout
+//!
+//! The modules are grouped by layer, each using the layers before it:
+//!
+//! * [`optics`]: pure kernels — Fresnel coefficients, media, the polarized ray and its ledger,
+//!   a ray meeting an interface, observables, double-double optical paths;
+//! * [`scene`]: planes and the surfaces built from them, sources;
+//! * [`accumulate`]: the accumulation core and the fidelity ladder;
+//! * [`trace`]: the exact path solver, sequence enumeration, arrivals, forward fans, spectral
+//!   beat terms (it builds the accumulation core's contributions, so it comes after it);
+//! * [`harness`]: case files, closed forms, the gate, and (hidden: not a stable API) the
+//!   stability sweep, fuzzing, grading and the cost studies;
+//! * [`output`]: pictures and colour, and (hidden) reports and figures.
+//!
+//! Known exceptions, kept until the file helpers move down: the harness writes its CSV and
+//! files through `output::report` (`csv_text`, `write_atomic`), and `check` runs the figures.
 //!
 //! # Example: a glass plate against the Airy formula
 //!
@@ -133,8 +151,8 @@
 //! `fringe::Source`, `fringe::Medium`, `fringe::Accumulator`, `fringe::Fidelity`, …).
 //!
 //! The same flow runs from a case file with `fringe check` (see `cases/README.md`), which
-//! builds the scene ([`harness::case::build`]), traces every probe point ([`harness::case::run`]) and compares
-//! with the references named in the file.
+//! builds the scene ([`harness::case::build`]), traces every probe point
+//! ([`harness::case::run`]) and compares with the references named in the file.
 
 #![warn(missing_docs)]
 
