@@ -707,7 +707,10 @@ fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Val
     let k0 = std::f64::consts::TAU / centre;
     let sigmas_max = ((k0 - std::f64::consts::TAU / 2500.0) / sigma_k)
         .min((std::f64::consts::TAU / 200.0 - k0) / sigma_k)
-        .min(12.0);
+        .min(12.0)
+        // The loader forms the band's ends from k0 ± σ·σ_k and converts them back to nm:
+        // exactly at the limit they round past it (2500.000000 nm refused).
+        * (1.0 - 1e-9);
     if sigmas_max < 1.0 {
         return Err("coherence_gaussian: this bandwidth does not fit one standard deviation inside 200-2500 nm around this centre".into());
     }
