@@ -196,3 +196,62 @@ fn a_direct_path_from_a_point_source_spreads_as_one_over_r_squared() {
         .fold(0.0, f64::max);
     assert!(e <= 1e-14, "traced vs Σ I/r²: {e:e} > 1e-14");
 }
+
+/// Gaussian light on a 1–2 nm plate of n = 3 over a substrate of n = 0.001, normal incidence
+/// (`fringe fuzz --family coherence_gaussian --seed 1`, scene 239, shrunk). cos²θt into the
+/// substrate was formed as ((n2 − n1)(n2 + n1) + n1² cos²θi)/n2², which cancels to ~u (n1/n2)²
+/// there: 0.9999999996 instead of exactly 1, and the closed form 1.5e-12 off. Checked: cos²θt
+/// is exactly 1 at normal incidence for any pair of indices, and the reference equals the
+/// two-beam sum |r12 + t12 r23 t21 e^{iδ}|² over the case's normalized spectral weights
+/// written out here (plain f64: nothing in it cancels).
+#[test]
+fn cos_theta_t_into_a_much_thinner_medium_is_exact_at_normal_incidence() {
+    for (n1, n2) in [(3.0, 0.001), (10.0, 0.001), (0.001, 10.0), (1.5, 1.5000001)] {
+        assert_eq!(
+            fringe::optics::fresnel::cos2_theta_t(n1, n2, 1.0),
+            1.0,
+            "{n1} → {n2}"
+        );
+    }
+    let path = root().join("tests/fuzz_found/fuzz_coherence_gaussian_s1_239.json");
+    let text = std::fs::read_to_string(&path).unwrap();
+    let case = load::parse(Path::new(&path), &text).expect("a valid case");
+    let r = run::run_with(&case, false).unwrap();
+    let m = &r.metrics[0];
+    // The case: 2000 nm, FWHM 0.2 nm, 17 samples over ±7σ in wavenumber; n = 1 / 3 / 0.001.
+    let (k0, n) = (std::f64::consts::TAU / 2000e-9, 17);
+    let sigma = std::f64::consts::TAU * 0.2e-9 / (2000e-9f64 * 2000e-9) / (8.0 * 2f64.ln()).sqrt();
+    let samples: Vec<(f64, f64)> = (0..n)
+        .map(|i| {
+            let x = -7.0 + 14.0 * i as f64 / (n - 1) as f64;
+            let end = if i == 0 || i == n - 1 { 0.5 } else { 1.0 };
+            (
+                std::f64::consts::TAU / (k0 + x * sigma),
+                end * (-0.5 * x * x).exp(),
+            )
+        })
+        .collect();
+    let total: f64 = samples.iter().map(|s| s.1).sum();
+    let (n1, n2, n3) = (1.0, 3.0, 0.001);
+    let a1 = (n1 - n2) / (n1 + n2);
+    let a2 = 2.0 * n1 / (n1 + n2) * (n2 - n3) / (n2 + n3) * 2.0 * n2 / (n1 + n2);
+    for (k, d_nm) in [1.0, 2.0].into_iter().enumerate() {
+        let r_exact: f64 = samples
+            .iter()
+            .map(|(lam, w)| {
+                let delta = 4.0 * std::f64::consts::PI * n2 * d_nm * 1e-9 / lam;
+                w / total * (a1 * a1 + a2 * a2 + 2.0 * a1 * a2 * delta.cos())
+            })
+            .sum();
+        let e = (m.analytic[k] - r_exact).abs() / r_exact;
+        assert!(
+            e <= 1e-14,
+            "closed form at {d_nm} nm: {e:e} off the two-beam sum"
+        );
+        let t = (m.traced[&Fidelity::Vector][k] - r_exact).abs() / r_exact;
+        assert!(
+            t <= 1e-14,
+            "traced at {d_nm} nm: {t:e} off the two-beam sum"
+        );
+    }
+}
