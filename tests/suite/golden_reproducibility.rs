@@ -73,3 +73,32 @@ fn goldens_hold_to_their_conditioning_and_catch_physical_changes() {
         );
     }
 }
+
+/// A profile that vanishes everywhere (`brewster_extinction`: R_p is exactly 0 at Brewster's
+/// angle, traced as rounding noise of ~1e-32) is compared on the gate's absolute scale of 1e-15
+/// of a unit source, not relative to its own noise: the noise tripled still matches, while a
+/// reflectance of 1e-6 at one angle (a physical change) does not. Relative to the noise, the
+/// golden failed on every change of rounding (the fresnel cos²θt form moved it by 0.73).
+#[test]
+fn a_vanishing_profile_is_compared_on_an_absolute_scale() {
+    let case = case_with("brewster_extinction", &|_| {});
+    let r = run::run_with(&case, false).unwrap();
+    let text = report::golden_csv(&r);
+    let mut noisy = r.clone();
+    for m in &mut noisy.metrics {
+        for t in m.traced.values_mut() {
+            for v in t.iter_mut() {
+                *v *= 3.0;
+            }
+        }
+    }
+    let tol = report::golden_tolerance(&case, &r);
+    assert!(report::compare_golden(&noisy, &text, tol).is_ok());
+    let mut changed = r.clone();
+    let t = changed.metrics[0].traced.values_mut().next().unwrap();
+    t[0] = 1e-6;
+    assert!(matches!(
+        report::compare_golden(&changed, &text, tol),
+        Err(report::GoldenError::Mismatch(_))
+    ));
+}
