@@ -41,10 +41,7 @@ fn mpmath_values() -> BTreeMap<String, Vec<f64>> {
 /// Largest relative deviation of the traced `vector` values of `name` from the 50-digit ones
 /// (relative to the largest 50-digit value of the profile, as the gate measures).
 fn traced_error(name: &str, truth: &[f64]) -> f64 {
-    let path = root().join(format!("tests/fuzz_found/{name}.json"));
-    let text = std::fs::read_to_string(&path).unwrap();
-    let case = load::parse(Path::new(&path), &text).expect("a valid case");
-    let r = run::run_with(&case, false).unwrap();
+    let r = run_file(&root().join(format!("tests/fuzz_found/{name}.json")));
     let traced = &r.metrics[0].traced[&Fidelity::Vector];
     assert_eq!(traced.len(), truth.len(), "{name}: probe points");
     let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
@@ -91,9 +88,7 @@ fn a_thick_plate_keeps_the_phase_of_its_long_path_differences() {
 fn a_thin_plate_far_out_is_judged_by_its_thickness_as_held() {
     check(&["fuzz_coherence_gaussian_s7_87"]);
     let truth = &mpmath_values()["fuzz_coherence_gaussian_s7_87"];
-    let path = root().join("tests/fuzz_found/fuzz_coherence_gaussian_s7_87.json");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let r = run::run_with(&load::parse(&path, &text).unwrap(), false).unwrap();
+    let r = run_file(&root().join("tests/fuzz_found/fuzz_coherence_gaussian_s7_87.json"));
     let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
     for (a, m) in r.metrics[0].analytic.iter().zip(truth) {
         let e = (a - m).abs() / scale;
@@ -109,7 +104,7 @@ fn run_file(path: &Path) -> run::CaseResult {
 /// The derived tolerance (what the arithmetic allows, `conditioning::intensity_rounding`) of
 /// every intensity metric of the library is at most 1e-9 (docs/PHYSICS.md §8: measured 1.7e-30
 /// for Brewster's extinction … 2e-12 for the Michelson, 2.2e-10 for incoherent_sources'
-/// finite-difference spreading), and wherever the case's reference is exact at 1e-12 the tracer
+/// bound on finite-difference spreading, which its direct paths no longer use), and wherever the case's reference is exact at 1e-12 the tracer
 /// stays within max(derived, 1e-12), as the fuzz gate requires of a random scene.
 #[test]
 fn the_library_is_within_what_the_arithmetic_allows() {
@@ -182,10 +177,7 @@ fn the_derived_tolerance_follows_the_phase_conditioning() {
 /// a few roundings.
 #[test]
 fn a_direct_path_from_a_point_source_spreads_as_one_over_r_squared() {
-    let path = root().join("tests/fuzz_found/fuzz_incoherent_sum_s1_333.json");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let case = load::parse(Path::new(&path), &text).expect("a valid case");
-    let r = run::run_with(&case, false).unwrap();
+    let r = run_file(&root().join("tests/fuzz_found/fuzz_incoherent_sum_s1_333.json"));
     let m = &r.metrics[0];
     let traced = &m.traced[&Fidelity::Vector];
     let scale = m.analytic.iter().fold(0.0f64, |s, x| s.max(x.abs()));
@@ -213,10 +205,7 @@ fn cos_theta_t_into_a_much_thinner_medium_is_exact_at_normal_incidence() {
             "{n1} → {n2}"
         );
     }
-    let path = root().join("tests/fuzz_found/fuzz_coherence_gaussian_s1_239.json");
-    let text = std::fs::read_to_string(&path).unwrap();
-    let case = load::parse(Path::new(&path), &text).expect("a valid case");
-    let r = run::run_with(&case, false).unwrap();
+    let r = run_file(&root().join("tests/fuzz_found/fuzz_coherence_gaussian_s1_239.json"));
     let m = &r.metrics[0];
     // The case: 2000 nm, FWHM 0.2 nm, 17 samples over ±7σ in wavenumber; n = 1 / 3 / 0.001.
     let (k0, n) = (std::f64::consts::TAU / 2000e-9, 17);
