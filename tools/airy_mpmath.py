@@ -20,7 +20,6 @@ import random
 import mpmath as mp
 
 mp.mp.dps = 50
-rng = random.Random(1130)
 
 
 def coeffs(na, nb, ca, pol):
@@ -50,29 +49,35 @@ def airy(n1, n2, n3, d, c1, lam, pol):
     return R, T
 
 
-print("n1,n2,n3,thickness_m,cos_theta_1,lambda_m,pol,reflectance,transmittance")
-rows = 0
-while rows < 64:
-    n1 = rng.choice([1.0, 1.0, 1.333, 1.5])
-    n2 = rng.choice([1.38, 1.5, 2.4, 4.0, 1.2])
-    n3 = rng.choice([n1, 1.0, 1.5, 1.7, 3.5])
-    d = 10 ** rng.uniform(-12, -3)
-    lam = rng.choice([200e-9, 400e-9, 550e-9, 700e-9, 1064e-9])
-    pol = rng.randint(0, 1)
-    kind = rows % 4
-    if kind == 0:
-        c1 = 10 ** rng.uniform(-6, -2)  # grazing
-    elif kind == 1:
-        c1 = math.cos(math.atan(n2 / n1)) * (1 + rng.choice([0.0, 1e-9, -1e-6]))  # Brewster
-    elif kind == 2 and n3 < n1:
-        # near the substrate's critical angle, on either side
-        s = n3 / n1 * (1 + rng.choice([1e-9, -1e-9, 1e-6, -1e-6]))
-        c1 = math.sqrt(1 - s * s)
-    else:
-        c1 = rng.uniform(0, 1)
-    if n1 * math.sqrt(max(0.0, 1 - c1 * c1)) >= n2 * 0.999999:
-        continue  # no propagating wave in the film (the reference refuses it)
-    R, T = airy(n1, n2, n3, d, c1, lam, pol)
-    vals = [n1, n2, n3, d, c1, lam, pol]
-    print(",".join(repr(v) for v in vals) + "," + mp.nstr(R, 30) + "," + mp.nstr(T, 30))
-    rows += 1
+def main():
+    rng = random.Random(1130)
+    print("n1,n2,n3,thickness_m,cos_theta_1,lambda_m,pol,reflectance,transmittance")
+    rows = 0
+    while rows < 64:
+        n1 = rng.choice([1.0, 1.0, 1.333, 1.5])
+        n2 = rng.choice([1.38, 1.5, 2.4, 4.0, 1.2])
+        n3 = rng.choice([n1, 1.0, 1.5, 1.7, 3.5])
+        d = 10 ** rng.uniform(-12, -3)
+        lam = rng.choice([200e-9, 400e-9, 550e-9, 700e-9, 1064e-9])
+        pol = rng.randint(0, 1)
+        kind = rows % 4
+        if kind == 0:
+            c1 = 10 ** rng.uniform(-6, -2)  # grazing
+        elif kind == 1:
+            c1 = math.cos(math.atan(n2 / n1)) * (1 + rng.choice([0.0, 1e-9, -1e-6]))  # Brewster
+        elif kind == 2 and n3 < n1:
+            # near the substrate's critical angle, on either side
+            s = n3 / n1 * (1 + rng.choice([1e-9, -1e-9, 1e-6, -1e-6]))
+            c1 = math.sqrt(1 - s * s)
+        else:
+            c1 = rng.uniform(0, 1)
+        if n1 * math.sqrt(max(0.0, 1 - c1 * c1)) >= n2 * 0.999999:
+            continue  # no propagating wave in the film (the reference refuses it)
+        R, T = airy(n1, n2, n3, d, c1, lam, pol)
+        vals = [n1, n2, n3, d, c1, lam, pol]
+        print(",".join(repr(v) for v in vals) + "," + mp.nstr(R, 30) + "," + mp.nstr(T, 30))
+        rows += 1
+
+
+if __name__ == "__main__":
+    main()
