@@ -17,6 +17,11 @@ use rayon::prelude::*;
 use std::collections::BTreeMap;
 use std::time::Instant;
 
+/// The smallest scale an intensity profile's deviations are divided by: a profile that vanishes
+/// everywhere (p light at Brewster's angle) is judged on an absolute scale of 1e-15 of a unit
+/// source, not relative to its own rounding noise (the gate and the golden comparison).
+pub const VANISHING_SCALE: f64 = 1e-15;
+
 /// Traced and closed-form values of one reference over the probe.
 #[derive(Clone, Debug)]
 pub struct MetricResult {
@@ -56,9 +61,10 @@ impl MetricResult {
     /// and |reference| pointwise for the other kinds.
     pub fn deviations(&self, level: Fidelity) -> Option<Vec<f64>> {
         let t = self.traced.get(&level)?;
-        // Floor: profiles that vanish everywhere (e.g. p light at Brewster's angle) are judged
-        // on an absolute scale of 1e-15 of a unit source.
-        let scale = self.analytic.iter().fold(1e-15f64, |m, a| m.max(a.abs()));
+        let scale = self
+            .analytic
+            .iter()
+            .fold(VANISHING_SCALE, |m, a| m.max(a.abs()));
         Some(
             t.iter()
                 .zip(&self.analytic)

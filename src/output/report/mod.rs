@@ -393,10 +393,8 @@ pub fn compare_golden(r: &CaseResult, golden: &str, tolerance: f64) -> Result<f6
             .values()
             .flatten()
             .fold(0.0f64, |a, v| a.max(v.abs()))
-            // As the gate judges a profile that vanishes everywhere (`MetricResult::deviations`):
-            // on an absolute scale of 1e-15 of a unit source, not relative to its rounding noise
-            // (brewster_extinction's R_p is exactly 0; its traced ~1e-32 change with any rounding).
-            .max(1e-15);
+            // brewster_extinction's R_p is exactly 0; its traced ~1e-32 change with any rounding.
+            .max(crate::harness::case::run::VANISHING_SCALE);
         for (l, t) in &m.traced {
             for (x, v) in m.coordinates.iter().zip(t) {
                 actual.push((m.name.clone(), l.to_string(), *x, *v, scale));
