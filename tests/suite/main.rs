@@ -20,6 +20,7 @@ mod forward;
 mod fresnel_pinned;
 mod fresnel_props;
 mod fuzz;
+mod fuzz_generators;
 mod golden_reproducibility;
 mod grade;
 mod input_classes;

@@ -33,6 +33,45 @@ pub fn rhomb_retardance(n_glass: f64, n_out: f64, theta: f64, k: usize) -> f64 {
     k as f64 * (phase_p(n_glass, n_out, theta) - phase_s(n_glass, n_out, theta))
 }
 
+/// The retardance of `k` identical TIRs, arg(p) − arg(s) of the output (radians, e^{-iωt}: the
+/// k (P6 − P5) of [`rhomb_retardance`], docs/PHYSICS.md §5), from the direction of the wave
+/// inside the glass and the TIR face's normal (any lengths, either orientation) instead of
+/// from θ. Near the critical angle the retardance goes as √(sin²θ − n21²): θ = acos(u·n) in
+/// f64 is off by ~1e-16/sin θ, which at θ − θc = 1e-12 rad moved the retardance by up to
+/// 1e-4 rad, far more than the tracer's own error (the fuzz's 50-digit check,
+/// `tools/rhomb_mpmath.py`). Here sin²θ = |û × n̂|², n21 = n_out/n_glass and
+/// sin²θ − n21² = (sin θ − n21)(sin θ + n21) are formed in double-double from the given
+/// vectors, so the closed form's own error stays ~1e-16 rad down to θ − θc ~ 1e-30. `None`
+/// when the wave is not beyond the critical angle (n_glass sin θ ≤ n_out: no TIR).
+pub fn rhomb_retardance_from_vectors(
+    n_glass: f64,
+    n_out: f64,
+    direction: glam::DVec3,
+    normal: glam::DVec3,
+    k: usize,
+) -> Option<f64> {
+    use super::precise::{div, dot2, unit};
+    let u = unit(direction);
+    let n = unit(normal);
+    let cross = [
+        u[1] * n[2] - u[2] * n[1],
+        u[2] * n[0] - u[0] * n[2],
+        u[0] * n[1] - u[1] * n[0],
+    ];
+    let sin = dot2(&cross, &cross).sqrt();
+    let cos = dot2(&u, &n).abs();
+    let n21 = div(n_out.into(), n_glass.into());
+    let gap = (sin - n21) * (sin + n21);
+    if gap.hi() <= 0.0 || cos.hi() <= 0.0 {
+        return None;
+    }
+    let root = gap.sqrt();
+    // tan(−P5/2) = √(sin²θ − n21²)/cos θ, tan(−P6/2) = √(sin²θ − n21²)/(n21² cos θ).
+    let ts = f64::from(div(root, cos));
+    let tp = f64::from(div(root, n21 * n21 * cos));
+    Some(k as f64 * 2.0 * (ts.atan() - tp.atan()))
+}
+
 /// Output of a rhomb in air (n = 1) for 45° linear input (equal s and p): the normalised
 /// Stokes V/I = sin(retardance) (±1: circular).
 pub fn rhomb_circularity(n_glass: f64, theta: f64, k: usize) -> f64 {

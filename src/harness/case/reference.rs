@@ -415,7 +415,12 @@ pub fn value(
             };
             let outside = if front.name == *glass { back } else { front };
             let n_out = outside.index(lambda_m).map_err(|e| e.to_string())?;
-            if n_glass * theta.sin() <= n_out {
+            // The closed form from the vectors in double-double (θ from acos in f64 is too coarse
+            // near the critical angle, analytic::tir::rhomb_retardance_from_vectors).
+            let normal = scene.surfaces[n].plane.normal;
+            let r =
+                analytic::tir::rhomb_retardance_from_vectors(n_glass, n_out, d, normal, *tir_count);
+            let Some(r) = r else {
                 return Err(format!(
                     "no total internal reflection at {tir_surface}: θ = {:.4}° inside {glass} \
                      (n = {n_glass}) against {} (n = {n_out}) is not beyond the critical angle \
@@ -428,8 +433,7 @@ pub fn value(
                         "none: the glass is not the denser medium".to_string()
                     }
                 ));
-            }
-            let r = analytic::tir::rhomb_retardance(n_glass, n_out, theta, *tir_count);
+            };
             Ok(wrap(r))
         }
         ReferenceModel::PlaneWaveBeams { beams } => {
@@ -937,12 +941,15 @@ pub fn coherence(
             // coherence_gaussian seed 7, test precision_classes::…thickness_as_held).
             let mut sum = 0.0;
             for &(lam, w) in spectrum {
-                let (a1, a2, film) = beams(lam)?;
+                let (_, _, film) = beams(lam)?;
                 // a1² + a2² + 2 a1 a2 cos δ as (a1 + a2)² − 4 a1 a2 sin²(δ/2): for a thin film
                 // a1 ≈ −a2 and the first form cancels to ~ε a1²/I (4e-13 of a 2 nm film's R).
+                // In double-double (analytic::coherence::two_beam_normal_reflectance): near a
+                // dark fringe the two terms cancel, and in f64 the closed form lost 1e-11.
                 let half = twofloat::TwoFloat::new_mul(film.n2, film.thickness_m);
-                let sin_half = analytic::precise::path_phasor(half, lam).im;
-                sum += w * ((a1 + a2) * (a1 + a2) - 4.0 * a1 * a2 * sin_half * sin_half);
+                sum += w * analytic::coherence::two_beam_normal_reflectance(
+                    film.n1, film.n2, film.n3, half, lam,
+                );
             }
             Ok(i0 * sum)
         }

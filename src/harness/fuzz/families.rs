@@ -293,7 +293,15 @@ fn lloyd(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     let h = d.log(1e-6, 1e-1);
     let l = d.log(1e-4, 100.0);
     let fringe = nm * 1e-9 * l / (2.0 * h * n0);
-    let z0 = (fringe * d.log(1e-3, 30.0)).min(REACH_M / 2.0);
+    // The loader takes a probe point within 1e-12 × max(|mirror point|, 1 m) of an unbounded
+    // mirror to lie on it (cases/README.md); after the rigid motion the mirror point is up to
+    // MAX_OFFSET_M from the origin. The lowest probe point stays ten times above that distance,
+    // so a drawn scene is off the mirror in every frame (a generator-validity bound, not a
+    // steer: below it the loader rightly refuses the scene as a detector in an interface).
+    let off_mirror = 10.0 * 1e-12 * super::MAX_OFFSET_M;
+    let z0 = (fringe * d.log(1e-3, 30.0))
+        .max(off_mirror)
+        .min(REACH_M / 2.0);
     let z1 = (z0 + fringe * d.log(1e-2, 10.0)).min(REACH_M);
     let angle = if d.flag(0.5) { 180.0 } else { 0.0 };
     Ok(case(
@@ -329,6 +337,18 @@ fn two_beam_plate(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, 
     let fit = (REACH_M / ((2.0 * hs + dh) * tan * (1.0 + span))).min(1.0);
     hs *= fit;
     dh *= fit;
+    // The loader refuses a probe passing within 1 µm of the point source (about a wavelength:
+    // ray optics needs the observer that far away, cases/README.md). The probe line's nearest
+    // point is at distance √(x0² + Δ²) from the source; when it is nearer than 2 µm (near
+    // normal incidence with Δ below a micrometre) every height is scaled up together, which
+    // keeps the angles and the ratio Δ/h_s (a valid scene of the same shape by construction).
+    let x_near = (2.0 * hs + dh) * tan;
+    let near = x_near.hypot(dh);
+    if near < 2e-6 {
+        let g = 2e-6 / near;
+        hs *= g;
+        dh *= g;
+    }
     let ho = hs + dh;
     let x0 = (hs + ho) * tan;
     let x1 = x0 * (1.0 + span) + 1e-9 * fit;
@@ -484,8 +504,11 @@ fn rhomb(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
             (critical + d.log(1e-10, 1.0)).min(90.0 - 1e-9)
         }
         _ => {
+            // Within 1e-7°–1° of grazing, and above the critical angle by at least 1e-10° (the
+            // near-critical draws' least offset) when that lies within a degree of grazing:
+            // clamping to the critical angle itself drew scenes without TIR (a generator defect).
             tags.push("grazing");
-            (90.0 - d.log(1e-7, 1.0)).max(critical)
+            90.0 - d.log(1e-7, (90.0 - critical - 1e-10).min(1.0))
         }
     };
     let size = d.log(1e-4, 10.0);
@@ -500,17 +523,29 @@ fn rhomb(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
         1 => -45.0,
         _ => d.real(-360.0, 360.0),
     };
+    // The prism is the triangle of the three face planes: the entry and exit faces meet at the
+    // apex (0, 0, size/cos θ), size·tan θ from p_in and p_out along the faces. Their rectangles
+    // end halfway to the apex, so the two faces never cross (beyond the apex, near the critical
+    // angle of a dense prism, the exit face's rectangle lay across the incoming beam, and no
+    // light reached the probe). On the side away from the apex they keep size/2: the TIR face's
+    // rectangle (|x| ≤ size/2) ends before the entry and exit planes meet z = 0 (|x| = size/sin θ).
+    let to_apex = (0.5 * size * theta.to_radians().tan()).min(0.5 * size);
+    let shift = 0.5 * (to_apex - 0.5 * size);
+    let height = to_apex + 0.5 * size;
+    let c_in = [p_in[0] + shift * c, 0.0, p_in[2] + shift * s];
+    let c_out = [p_out[0] - shift * c, 0.0, p_out[2] + shift * s];
+    let face = |u: [f64; 3]| json!({"size_m": [size, height], "u_axis": u});
     let rect = |u: [f64; 3]| json!({"size_m": [size, size], "u_axis": u});
     Ok(case(
         monochrome(nm),
         json!({"ambient": constant(n0), "glass": constant(ng)}),
         json!([
-            {"interface": {"name": "entry", "point_m": p_in, "normal": [-s, 0.0, c],
-                           "front": "ambient", "back": "glass", "rect": rect([0.0, 1.0, 0.0])}},
+            {"interface": {"name": "entry", "point_m": c_in, "normal": [-s, 0.0, c],
+                           "front": "ambient", "back": "glass", "rect": face([0.0, 1.0, 0.0])}},
             {"interface": {"name": "tir", "point_m": [0, 0, 0], "normal": [0, 0, -1],
                            "front": "ambient", "back": "glass", "rect": rect([1.0, 0.0, 0.0])}},
-            {"interface": {"name": "exit", "point_m": p_out, "normal": [s, 0.0, c],
-                           "front": "ambient", "back": "glass", "rect": rect([0.0, 1.0, 0.0])}}
+            {"interface": {"name": "exit", "point_m": c_out, "normal": [s, 0.0, c],
+                           "front": "ambient", "back": "glass", "rect": face([0.0, 1.0, 0.0])}}
         ]),
         json!([{"name": "beam",
                 "emitter": {"plane_wave": {"direction": inward, "reference_point_m": start}},
@@ -627,6 +662,11 @@ fn michelson(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, Strin
                 .into(),
         );
     }
+    // m1 lies wholly on the probe side of the pinhole's screen (|x| ≤ 0.8u, the screen at
+    // x = −0.9u; the arm's rays meet it within |x| ≤ x1 ≤ 0.5u): a larger m1 reached behind the
+    // screen, where the source lit it directly and it sent that light down through the pinhole
+    // (source, m1, splitter, probe: not a Michelson interferometer).
+    let m1_half = 0.8 * u;
     let pol = polarization(d, [0.0, 1.0, 0.0]);
     Ok(case(
         monochrome(nm),
@@ -635,7 +675,7 @@ fn michelson(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, Strin
             {"splitter": {"name": "splitter", "point_m": [0, 0, 0], "normal": [-h, 0.0, h],
                           "reflectance": r, "rect": {"size_m": [6.0 * u, 6.0 * u], "u_axis": [h, 0.0, h]}}},
             {"mirror": {"name": "m1", "point_m": [0, 0, a1], "normal": [0, 0, -1],
-                        "rect": {"size_m": [4.0 * u, 4.0 * u], "u_axis": [1, 0, 0]}}},
+                        "rect": {"size_m": [2.0 * m1_half, 4.0 * u], "u_axis": [1, 0, 0]}}},
             {"mirror": {"name": "m2", "point_m": [a2, 0, 0], "normal": [-tilt.cos(), 0.0, tilt.sin()],
                         "rect": {"size_m": [4.0 * u, 4.0 * u], "u_axis": [0, 0, 1]}}},
             {"opaque_screen": {"name": "pinhole", "point_m": [xh, 0, 0], "normal": [1, 0, 0],
@@ -695,25 +735,33 @@ fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Val
     let n1 = ambient(d, tags);
     let n2 = index(d, 1.5);
     let (on_substrate, n3) = substrate(d, tags, n1);
-    let centre = wavelength_nm(d);
-    let fwhm = centre * d.log(1e-4, 0.2);
+    // The sampled band k0 ± sigmas·σ_k must lie within [200, 2500] nm (the loader's rule), with
+    // a relative margin of 1e-12 on each end for the rounding of the loader's k → λ conversion
+    // (a margin relative to k0 − k_min was lost to it for centres near 2500 nm).
+    let tau = std::f64::consts::TAU;
+    let (k_min, k_max) = (tau / 2500.0 * (1.0 + 1e-12), tau / 200.0 * (1.0 - 1e-12));
+    // A centre exactly at a limit has no valid Gaussian around it (any width spills over).
+    let centre = wavelength_nm(d).clamp(200.0 * (1.0 + 1e-9), 2500.0 * (1.0 - 1e-9));
+    let k0 = tau / centre;
+    // σ_k = 2π FWHM/(centre² √(8 ln 2)) (nm⁻¹), the conversion of build::spectrum.
+    let fwhm_per_sigma_k = centre * centre * (8.0 * 2f64.ln()).sqrt() / tau;
+    // The widest FWHM whose band fits one standard deviation (sigmas ≥ 1, the least the loader
+    // takes): the FWHM is drawn log-uniform over [1e-4, 0.2] of the centre below that bound (a
+    // valid scene by construction; near 200 or 2500 nm the bound is below 1e-4 of the centre and
+    // the range moves down with it).
+    let fwhm_fit = (k0 - k_min).min(k_max - k0) * fwhm_per_sigma_k * (1.0 - 1e-6);
+    let hi = (fwhm_fit / centre).min(0.2);
+    let lo = if hi >= 1e-4 { 1e-4 } else { 1e-3 * hi };
+    let fwhm = centre * d.log(lo, hi);
     let t0_nm = d.log(0.1, 1e8);
     let t1_nm = (t0_nm * (1.0 + d.log(1e-6, 10.0))).min(1e9);
     // Resolution the trapezoid sum needs (see the doc comment).
-    let sigma_k = std::f64::consts::TAU * fwhm / (centre * centre) / (8.0 * 2f64.ln()).sqrt();
+    let sigma_k = fwhm / fwhm_per_sigma_k;
     let ds_nm = 2.0 * n2 * t1_nm;
-    // The sampled band k0 ± sigmas·σ_k must stay within [200, 2500] nm (the loader's rule):
-    // the most standard deviations this spectrum allows.
-    let k0 = std::f64::consts::TAU / centre;
-    let sigmas_max = ((k0 - std::f64::consts::TAU / 2500.0) / sigma_k)
-        .min((std::f64::consts::TAU / 200.0 - k0) / sigma_k)
-        .min(12.0)
-        // The loader forms the band's ends from k0 ± σ·σ_k and converts them back to nm:
-        // exactly at the limit they round past it (2500.000000 nm refused).
-        * (1.0 - 1e-9);
-    if sigmas_max < 1.0 {
-        return Err("coherence_gaussian: this bandwidth does not fit one standard deviation inside 200-2500 nm around this centre".into());
-    }
+    // The most standard deviations this spectrum allows (at least 1 by the FWHM's bound).
+    let sigmas_max = ((k0 - k_min) / sigma_k)
+        .min((k_max - k0) / sigma_k)
+        .min(12.0);
     let (sigmas, samples) = match d.choose(2) {
         0 => {
             let sigmas = d.real(7.0, 12.0).min(sigmas_max);
@@ -721,7 +769,7 @@ fn coherence_gaussian(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Val
             // beyond 4096 samples the spectrum is undersampled (the sampling error is not part
             // of the verdict).
             let need = sigmas * (7.0 + ds_nm * sigma_k) / std::f64::consts::PI + 1.0;
-            if need > 4096.0 {
+            if need > 4096.0 || sigmas < 7.0 {
                 tags.push("undersampled");
             }
             let n = (need * d.real(1.0, 4.0)).ceil().min(4096.0);
