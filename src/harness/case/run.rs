@@ -385,15 +385,15 @@ fn point_work(
 /// ray of sequence discovery visiting one node of the sequence tree, or the solver tracing one
 /// surface event; about [`SECONDS_PER_WORK_UNIT`] each). The tree is enumerated as the tracer enumerates it, at the probe point with
 /// the largest internal-reflection budget (the Airy tail rule may raise it near grazing
-/// incidence), so the count follows the surfaces: reflections between separate surfaces in
+/// incidence up to the cap; beyond it the budget is [`CLOSED_TAIL_ORDERS`] orders and the
+/// closed tail, one arrival of O(1) work per channel, docs/PHYSICS.md §5a), so the count follows the surfaces: reflections between separate surfaces in
 /// the ambient medium are not internal reflections, and stacked plates multiply the sequences
 /// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
 /// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
 /// spectral samples; the bounce-convergence report of monochrome Airy cases adds twelve budgets
 /// of at most 24 points. A case over [`MAX_PATH_EVENTS`] is refused with the estimate (units
-/// and seconds) and the key that drives it; so is a tail bound that needs more internal
-/// reflections than the cap.
+/// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;
     let points = build::probe_points(&spec.probe);
