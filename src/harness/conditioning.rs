@@ -71,6 +71,11 @@ pub fn intensity_rounding(arrivals: &[Arrival], reference: DoubleDouble, lambda_
             let end = a.vector.origin.abs().max_element();
             da += UNIT_ROUNDOFF * x.max(end) / (SPREADING_STEP * ell);
         }
+        // A closed Airy tail (docs/PHYSICS.md §5a): the sum q/(1 − q) of the further orders is
+        // 1/|1 − q| more sensitive to the round trip's phase and amplitude than one order.
+        if let Some(t) = &a.tail {
+            da += t.field(&a.vector.field(), Fidelity::Vector, lambda_m).1;
+        }
         let term = e * (dphi + da);
         if c.coherence_id == INCOHERENT {
             singles.push((e, term));

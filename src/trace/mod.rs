@@ -11,6 +11,7 @@ pub mod beats;
 pub mod forward;
 pub mod path;
 pub mod sequence_tree;
+pub mod tail;
 
 use crate::accumulate::fidelity::{Fidelity, SceneNeeds};
 use crate::accumulate::{Accumulator, Contribution};
@@ -121,6 +122,10 @@ pub struct Arrival {
     /// The ray propagated with the paper's rules (`None` when traced without them, see
     /// [`arrivals_with`]).
     pub paper: Option<Ray>,
+    /// `Some` for the arrival that stands for every order of a plane wave between two parallel
+    /// faces beyond the last one traced ([`tail::close`]): its rays are that order's, and its
+    /// contribution is the closed sum of the further orders (docs/PHYSICS.md §5a).
+    pub tail: Option<Arc<tail::TailClosure>>,
 }
 
 impl Arrival {
@@ -636,6 +641,7 @@ impl Recorder<'_, '_> {
                 path: Arc::clone(&path),
                 vector: ray,
                 paper: None,
+                tail: None,
             })
         });
         if let Some(paper) = paper {
@@ -778,6 +784,9 @@ pub fn phase_cycles(path: DoubleDouble, reference: DoubleDouble, lambda_m: f64) 
 /// formed in double-double and only then rounded and divided by λ, so a path of any length
 /// keeps its phase relative to the reference to ~1e-16 of the difference (docs/PHYSICS.md §1).
 pub fn contribution_from(a: &Arrival, level: Fidelity, reference: DoubleDouble) -> Contribution {
+    if let Some(t) = &a.tail {
+        return tail_contribution(a, t, level, reference);
+    }
     let v = &a.vector;
     let cycles = |r: &Ray| phase_cycles(r.optical_path, reference, r.wavelength_m);
     let scalar = |extra_cycles: f64| Contribution {
@@ -808,6 +817,53 @@ pub fn contribution_from(a: &Arrival, level: Fidelity, reference: DoubleDouble) 
             coherence_id: v.coherence_id,
             phase_cycles: cycles(v),
             field: v.field(),
+        },
+    }
+}
+
+/// [`contribution_from`] of an arrival standing for a closed tail (docs/PHYSICS.md §5a): the
+/// sum of the orders beyond the traced one it carries, under the level's own model.
+fn tail_contribution(
+    a: &Arrival,
+    t: &tail::TailClosure,
+    level: Fidelity,
+    reference: DoubleDouble,
+) -> Contribution {
+    let v = &a.vector;
+    let cycles = |r: &Ray| phase_cycles(r.optical_path, reference, r.wavelength_m);
+    let e = v.field();
+    let scalar = |jump: bool, extra_cycles: f64| {
+        let f = t.scalar_factor(&e, jump, v.wavelength_m) * v.intensity().sqrt();
+        Contribution {
+            coherence_id: v.coherence_id,
+            phase_cycles: cycles(v) + extra_cycles,
+            field: [f, Complex64::default(), Complex64::default()],
+        }
+    };
+    match level {
+        Fidelity::Incoherent => Contribution {
+            coherence_id: INCOHERENT,
+            phase_cycles: cycles(v),
+            field: [
+                Complex64::from(t.incoherent_intensity(&e).sqrt()),
+                Complex64::default(),
+                Complex64::default(),
+            ],
+        },
+        Fidelity::Scalar => scalar(false, 0.0),
+        Fidelity::ScalarJump => scalar(true, 0.5 * a.path.denser_reflections as f64),
+        Fidelity::PaperRules => {
+            let paper = a.paper.as_ref().expect(PAPER_MISSING);
+            Contribution {
+                coherence_id: paper.coherence_id,
+                phase_cycles: cycles(paper),
+                field: t.field(&paper.field(), level, paper.wavelength_m).0,
+            }
+        }
+        Fidelity::Vector => Contribution {
+            coherence_id: v.coherence_id,
+            phase_cycles: cycles(v),
+            field: t.field(&e, level, v.wavelength_m).0,
         },
     }
 }
@@ -855,16 +911,29 @@ pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
             }
             n.interference = true;
             // Parallel, real-proportional fields: |E_a·E_b*| = |E_a||E_b|.
-            let (ea, eb) = (a.vector.field(), b.vector.field());
+            let (ea, eb) = (vector_field(a), vector_field(b));
             let dot: Complex64 = (0..3).map(|k| ea[k] * eb[k].conj()).sum();
-            let na = a.vector.intensity().sqrt();
-            let nb = b.vector.intensity().sqrt();
+            let norm =
+                |e: &crate::optics::ray::Field3| e.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
+            let (na, nb) = (norm(&ea), norm(&eb));
             if (dot.norm() - na * nb).abs() > 1e-12 * na * nb || dot.im.abs() > 1e-12 * na * nb {
                 n.parallel_fields = false;
             }
         }
     }
     n
+}
+
+/// An arrival's `vector` field (path phase excluded): its ray's, or for a closed tail the sum
+/// of the orders it stands for.
+fn vector_field(a: &Arrival) -> crate::optics::ray::Field3 {
+    match &a.tail {
+        Some(t) => {
+            t.field(&a.vector.field(), Fidelity::Vector, a.vector.wavelength_m)
+                .0
+        }
+        None => a.vector.field(),
+    }
 }
 
 /// Combine the needs of several points.

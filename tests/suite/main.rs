@@ -7,6 +7,7 @@ mod common;
 mod support;
 
 mod accumulate;
+mod airy_tail;
 mod beats;
 mod case_library;
 mod case_parser_props;

@@ -311,6 +311,7 @@ fn basis_free_light_does_not_depend_on_the_dipole_axes() {
                         path: a.path.clone(),
                         vector: ray,
                         paper: None,
+                        tail: None,
                     })
                 },
             );

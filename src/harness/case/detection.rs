@@ -203,7 +203,13 @@ fn fault_rays(arrivals: &[Arrival]) -> Vec<FaultRay> {
             coherence_id: a.vector.coherence_id,
             optical_path: a.vector.optical_path,
             wavelength_m: a.vector.wavelength_m,
-            jones: a.vector.jones,
+            // A closed Airy tail (docs/PHYSICS.md §5a): the Jones vector of the orders it
+            // stands for, in its ray's frame.
+            jones: a.tail.as_ref().map_or(a.vector.jones, |t| {
+                let (e, _) = t.field(&a.vector.field(), Fidelity::Vector, a.vector.wavelength_m);
+                let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
+                [dot(a.vector.x), dot(a.vector.y)]
+            }),
             x: a.vector.x,
             y: a.vector.y,
             chosen: Some(std::sync::Arc::as_ptr(&a.path)) == chosen,

@@ -206,11 +206,37 @@ fn gaussian(light: &Light) -> Option<(f64, f64)> {
     }
 }
 
+/// Reflected orders traced explicitly where the Airy tail is closed instead of refused
+/// ([`Budget::closed`]): the closure (docs/PHYSICS.md §5a) needs two consecutive traced orders
+/// with at least one round trip; a few more keep the traced part what it is below the cap.
+pub const CLOSED_TAIL_ORDERS: usize = 8;
+
+/// The internal-reflection budget at a probe point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+struct Budget {
+    /// Internal reflections traced per path.
+    internal: usize,
+    /// The Airy tail beyond them is closed exactly ([`trace::tail::close`]) instead of bounded:
+    /// the tail bound needs more internal reflections than the cap.
+    closed: bool,
+}
+
 /// The internal-reflection budget at a probe point.
 fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usize, CaseError> {
+    budget(case, built, lambda_m).map(|b| b.internal)
+}
+
+/// The budget at a probe point: `max_internal_reflections`, or the Airy tail rule: enough
+/// reflected orders that the tail bound is below `airy_tail_epsilon`; where that needs more
+/// internal reflections than the cap (near grazing incidence), [`CLOSED_TAIL_ORDERS`] orders
+/// with the tail beyond them closed exactly.
+fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget, CaseError> {
     let spec = &case.spec;
     let Some(eps) = spec.trace.airy_tail_epsilon else {
-        return Ok(spec.trace.max_internal_reflections);
+        return Ok(Budget {
+            internal: spec.trace.max_internal_reflections,
+            closed: false,
+        });
     };
     let film = spec
         .references
@@ -228,32 +254,33 @@ fn internal_reflections(case: &Case, built: &Built, lambda_m: f64) -> Result<usi
         })?;
     let (f, cos1) = reference::airy_film(built, &film, lambda_m)
         .map_err(|e| case_err(case, "$.references", e))?;
-    let orders = [
+    let pols = [
         crate::harness::analytic::plate::Pol::S,
         crate::harness::analytic::plate::Pol::P,
-    ]
-    .into_iter()
-    .map(|p| f.orders_for_bound(cos1, lambda_m, p, eps))
-    .max()
-    .unwrap_or(1);
-    // The bound holds only if every order it asks for is traced: never cap silently.
-    let internal = 2 * orders + 1;
+    ];
+    // The most orders the cap allows (2 N + 1 internal reflections); the bound decreases with
+    // N, so the bound needs more than the cap exactly when it is not met at N.
     let cap = super::load::limits::MAX_INTERNAL_REFLECTIONS;
-    if internal > cap {
-        return Err(case_err(
-            case,
-            "$.trace.airy_tail_epsilon",
-            format!(
-                "the Airy tail bound {eps:e} needs {orders} reflected orders ({internal} internal \
-                 reflections) at {:.1} nm and θ1 = {:.4}°, more than the cap of {cap}: the plate \
-                 reflects too well there (|r21 r23| → 1 near grazing incidence); loosen \
-                 airy_tail_epsilon or move the probe away from grazing",
-                lambda_m * 1e9,
-                cos1.clamp(-1.0, 1.0).acos().to_degrees()
-            ),
-        ));
+    let most = (cap - 1) / 2;
+    if pols
+        .into_iter()
+        .any(|p| f.r_tail_bound(cos1, lambda_m, p, most) > eps)
+    {
+        return Ok(Budget {
+            internal: 2 * CLOSED_TAIL_ORDERS + 1,
+            closed: true,
+        });
     }
-    Ok(internal)
+    let orders = pols
+        .into_iter()
+        .map(|p| f.orders_for_bound(cos1, lambda_m, p, eps))
+        .max()
+        .unwrap_or(1);
+    // The bound holds only if every order it asks for is traced: never cap silently.
+    Ok(Budget {
+        internal: 2 * orders + 1,
+        closed: false,
+    })
 }
 
 /// Work units (see [`preflight`]) a case may use before it is refused: about five minutes of
@@ -358,15 +385,15 @@ fn point_work(
 /// ray of sequence discovery visiting one node of the sequence tree, or the solver tracing one
 /// surface event; about [`SECONDS_PER_WORK_UNIT`] each). The tree is enumerated as the tracer enumerates it, at the probe point with
 /// the largest internal-reflection budget (the Airy tail rule may raise it near grazing
-/// incidence), so the count follows the surfaces: reflections between separate surfaces in
+/// incidence up to the cap; beyond it the budget is [`CLOSED_TAIL_ORDERS`] orders and the
+/// closed tail, one arrival of O(1) work per channel, docs/PHYSICS.md §5a), so the count follows the surfaces: reflections between separate surfaces in
 /// the ambient medium are not internal reflections, and stacked plates multiply the sequences
 /// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
 /// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
 /// spectral samples; the bounce-convergence report of monochrome Airy cases adds twelve budgets
 /// of at most 24 points. A case over [`MAX_PATH_EVENTS`] is refused with the estimate (units
-/// and seconds) and the key that drives it; so is a tail bound that needs more internal
-/// reflections than the cap.
+/// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;
     let points = build::probe_points(&spec.probe);
@@ -447,11 +474,23 @@ pub fn trace_settings(
     built: &Built,
     lambda_m: f64,
 ) -> Result<TraceSettings, CaseError> {
-    Ok(settings(
-        case,
-        built,
-        internal_reflections(case, built, lambda_m)?,
-    ))
+    let b = budget(case, built, lambda_m)?;
+    if b.closed {
+        // Only the case runner closes the tail (trace::tail::close): a caller of these settings
+        // would trace a cut sum.
+        return Err(case_err(
+            case,
+            "$.trace.airy_tail_epsilon",
+            format!(
+                "the Airy tail bound {:e} needs more internal reflections than the cap of {} \
+                 here (near grazing incidence); `fringe check` closes that tail exactly, this \
+                 command does not: loosen airy_tail_epsilon or move away from grazing",
+                case.spec.trace.airy_tail_epsilon.unwrap_or(0.0),
+                super::load::limits::MAX_INTERNAL_REFLECTIONS
+            ),
+        ));
+    }
+    Ok(settings(case, built, b.internal))
 }
 
 fn settings(case: &Case, built: &Built, internal: usize) -> TraceSettings {
@@ -629,7 +668,8 @@ pub(super) fn trace_point(
     let built =
         build::build_scene(&spec.scene, &pt.overrides).map_err(|e| case_err(case, "$.scene", e))?;
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
-    let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
+    let b = budget(case, &built, spectrum[spectrum.len() / 2].0)?;
+    let internal = b.internal;
     let st = settings(case, &built, internal);
     // The last traced sample's indices, target and arrivals: a sample with the same indices
     // and target (non-dispersive media) has the same arrivals at its own wavelength
@@ -664,7 +704,7 @@ pub(super) fn trace_point(
                 arr.iter().map(|a| a.at_wavelength(lambda_m)).collect()
             }
             _ => {
-                let arr = arrivals_at(
+                let mut arr = arrivals_at(
                     &built,
                     &optics,
                     &target,
@@ -673,6 +713,22 @@ pub(super) fn trace_point(
                     &required_paths(case, &built),
                 )
                 .map_err(|e| case_err(case, "$.probe", e))?;
+                // Beyond the cap: the orders past the traced ones, closed exactly.
+                if b.closed {
+                    trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
+                        case_err(
+                            case,
+                            "$.trace.airy_tail_epsilon",
+                            format!(
+                                "the Airy tail bound needs more internal reflections than the \
+                                 cap of {} here (near grazing incidence), and the tail cannot \
+                                 be closed exactly: {e}; loosen airy_tail_epsilon or move the \
+                                 probe away from grazing",
+                                super::load::limits::MAX_INTERNAL_REFLECTIONS
+                            ),
+                        )
+                    })?;
+                }
                 last = Some((optics, target, arr.clone()));
                 arr
             }

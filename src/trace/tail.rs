@@ -1,0 +1,437 @@
+//! The Airy tail closed exactly: the sum of every reflected order of a plane wave between two
+//! parallel faces beyond the last one traced (docs/PHYSICS.md §5a, eq. T1).
+//!
+//! Between two parallel faces X and Y every further round trip multiplies the s and p
+//! amplitudes of the last traced order a_N by the same factor q_σ = A_σ e^{2πi ΔS/λ}, with
+//! A_σ = r_σ(X) r_σ(Y) the two internal Fresnel coefficients the tracer applied (its own ledger)
+//! and ΔS the optical path of one round trip (the difference of the traced optical paths of
+//! orders N and N − 1, in double-double). Orders N + 1, N + 2, … sum to a_N q_σ/(1 − q_σ) per
+//! σ: one extra arrival ([`TailClosure`] on [`Arrival::tail`]) that stands for infinitely many.
+//!
+//! Conditioning: near grazing incidence 1 − |q| ~ 1e-9, so 1 − q is never formed from q. It is
+//! (1 − |A|) + |A|(1 − e^{iψ}), with 1 − |A|² from Stokes' relations (4 Re(x ȳ)/|x + y|² for
+//! r = (x − y)/(x + y), no cancellation; the normal wavevectors x, y from the squared normal
+//! components the tracer carries in double-double, [`crate::optics::ray::Ray::normal_q2`]),
+//! 1 − e^{iψ} = 2 sin²(ψ/2) − i sin ψ, and ψ = arg A + 2π·frac(ΔS/λ) with the fraction of a
+//! cycle reduced in double-double ([`super::phase_cycles`]).
+//!
+//! Where it applies (anything else is refused with the reason, never closed approximately):
+//! a plane-wave source observed in the far field, with an infinite coherence length; a scene of
+//! exactly two unbounded dielectric interfaces whose normals are the same line (bitwise ±, the
+//! tracer's own test for carrying q² between faces); the deepest traced sequence ends in a run
+//! of internal reflections alternating between them followed only by refractions, and the
+//! sequence with one round trip fewer was traced too, with the same coherence id.
+
+use super::{Arrival, phase_cycles};
+use crate::accumulate::fidelity::Fidelity;
+use crate::optics::double_double::{DoubleDouble, two_prod};
+use crate::optics::interaction::indices_for;
+use crate::optics::ray::{Field3, INCOHERENT, LedgerEntry, Ray};
+use crate::scene::geometry::Extent;
+use crate::scene::source::Emitter;
+use crate::scene::{Scene, SceneOptics, SurfaceKind};
+use crate::trace::path::EventKind;
+use glam::DVec3;
+use num_complex::Complex64;
+use std::f64::consts::TAU;
+use std::sync::Arc;
+
+/// Unit roundoff of f64.
+const U: f64 = f64::EPSILON / 2.0;
+
+/// A light whose field along one of s, p is below this fraction of the other is taken as pure
+/// s or p light by the scalar rungs (their tail is a geometric series only then).
+const PURE_POLARIZATION: f64 = 1e-15;
+
+/// One round trip between the faces under one coefficient model, per σ = (s, p).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct RoundTrip {
+    /// A_σ = r_σ(X) r_σ(Y), as the tracer applied them (dimensionless, complex).
+    pub a: [Complex64; 2],
+    /// 1 − |A_σ|², from Stokes' relations (no cancellation).
+    pub one_minus_abs2: [f64; 2],
+}
+
+/// The closure of the orders beyond the last traced one (module docs): the arrival it rides on
+/// is that order's, and its contribution is the sum of all further orders.
+#[derive(Clone, Debug, PartialEq)]
+pub struct TailClosure {
+    /// Optical path of one round trip, ΔS (m), in double-double.
+    pub round_trip_path: DoubleDouble,
+    /// The s and p unit vectors of the exit direction (p = d × s).
+    pub s: DVec3,
+    /// See `s`.
+    pub p: DVec3,
+    /// Under complex Fresnel (`vector`).
+    pub vector: RoundTrip,
+    /// Under the paper's rules (`paper_rules`), when traced.
+    pub paper: Option<RoundTrip>,
+    /// Reflections from the denser side per round trip (the half cycles of `scalar_jump`).
+    pub denser_per_round_trip: usize,
+    /// Reflected orders traced explicitly before the closure (information).
+    pub traced_orders: usize,
+}
+
+/// q/(1 − q) for q = |a| e^{iψ}, ψ = arg a + 2π `cycles` (docs/PHYSICS.md eq. T1), with 1 − q
+/// formed without cancellation from `one_minus_abs2` = 1 − |a|², and a bound on its relative
+/// rounding error given the error `dpsi` (rad) of ψ. `None` when |a| = 1 (no decay: the series
+/// diverges).
+pub fn geometric_sum(
+    a: Complex64,
+    one_minus_abs2: f64,
+    cycles: f64,
+    dpsi: f64,
+) -> Option<(Complex64, f64)> {
+    if one_minus_abs2 <= 0.0 {
+        return None;
+    }
+    let m = (1.0 - one_minus_abs2).max(0.0).sqrt();
+    let one_minus_m = one_minus_abs2 / (1.0 + m);
+    // ψ in cycles: arg a/2π is exactly 0 or ±0.5 for a real a (π/τ is exact), so the sum
+    // with the path's fraction of a cycle near a resonance is exact (Sterbenz).
+    let c = a.im.atan2(a.re) / TAU + cycles;
+    let psi = TAU * (c - c.round());
+    let (sin, cos) = psi.sin_cos();
+    let half = (0.5 * psi).sin();
+    let q = Complex64::new(m * cos, m * sin);
+    let one_minus_q = Complex64::new(one_minus_m + 2.0 * m * half * half, -m * sin);
+    let w = one_minus_q.norm();
+    // δq ≤ (a few u)(1 − |a|) + u + |a| δψ; F = q/(1 − q): δF/F ≤ δq/|q| + δ(1 − q)/|1 − q|.
+    let dq = 4.0 * U * (one_minus_m + 1.0) + m * (dpsi + 4.0 * U);
+    let rel = if m > 0.0 { dq / m } else { 0.0 } + (dq + 4.0 * U * w) / w;
+    Some((q / one_minus_q, rel))
+}
+
+impl TailClosure {
+    fn round_trip(&self, level: Fidelity) -> Option<&RoundTrip> {
+        match level {
+            Fidelity::PaperRules => self.paper.as_ref(),
+            _ => Some(&self.vector),
+        }
+    }
+
+    /// The phase error (rad) of ψ at `lambda_m`: the round trip's path known to a few u
+    /// relative (docs/PHYSICS.md §8), plus the rounding of arg A and of the reduction.
+    fn dpsi(&self, lambda_m: f64) -> f64 {
+        let cu = 8.0 * U;
+        TAU * cu * (self.round_trip_path.to_f64().abs() / lambda_m + 1.0)
+    }
+
+    fn cycles(&self, lambda_m: f64) -> f64 {
+        phase_cycles(self.round_trip_path, DoubleDouble::ZERO, lambda_m)
+    }
+
+    /// The field of orders N + 1, N + 2, … given order N's field `e` (its own path phase
+    /// excluded, as in a contribution) at vacuum wavelength `lambda_m`, under the model of
+    /// `level` (`vector` or `paper_rules`), and a bound on its relative rounding error.
+    pub fn field(&self, e: &Field3, level: Fidelity, lambda_m: f64) -> (Field3, f64) {
+        let rt = self
+            .round_trip(level)
+            .expect("a paper_rules tail is closed where the paper's rules were traced");
+        let c = self.cycles(lambda_m);
+        let dpsi = self.dpsi(lambda_m);
+        let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
+        let (es, ep) = (dot(self.s), dot(self.p));
+        let mut out = [Complex64::default(); 3];
+        let mut rel = 0.0f64;
+        for (k, (amp, v)) in [(es, self.s), (ep, self.p)].into_iter().enumerate() {
+            if amp == Complex64::default() {
+                continue;
+            }
+            let Some((f, r)) = geometric_sum(rt.a[k], rt.one_minus_abs2[k], c, dpsi) else {
+                return ([Complex64::new(f64::NAN, f64::NAN); 3], f64::NAN);
+            };
+            rel = rel.max(r);
+            let x = amp * f;
+            out[0] += x * v.x;
+            out[1] += x * v.y;
+            out[2] += x * v.z;
+        }
+        (out, rel)
+    }
+
+    /// The intensity of orders N + 1, N + 2, … added without phase (`incoherent`), given order
+    /// N's field `e`: Σ_σ |e_σ|² |A_σ|²/(1 − |A_σ|²).
+    pub fn incoherent_intensity(&self, e: &Field3) -> f64 {
+        let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
+        let rt = &self.vector;
+        [dot(self.s), dot(self.p)]
+            .iter()
+            .zip(rt.one_minus_abs2)
+            .map(|(x, d)| {
+                if x.norm_sqr() == 0.0 {
+                    0.0
+                } else {
+                    x.norm_sqr() * (1.0 - d) / d
+                }
+            })
+            .sum()
+    }
+
+    /// The scalar rungs' sum of orders N + 1, … as a factor on order N's scalar amplitude √I_N:
+    /// Σ_k |A_σ|^k e^{2πi k (ΔS/λ + j/2)} (j the denser-side reflections per round trip when
+    /// `jump`). A geometric series only for s or p light (|A_s| ≠ |A_p| otherwise): NaN for
+    /// mixed light (docs/PHYSICS.md §5a).
+    pub fn scalar_factor(&self, e: &Field3, jump: bool, lambda_m: f64) -> Complex64 {
+        let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
+        let (es, ep) = (dot(self.s).norm(), dot(self.p).norm());
+        let k = if ep <= PURE_POLARIZATION * es {
+            0
+        } else if es <= PURE_POLARIZATION * ep {
+            1
+        } else {
+            return Complex64::new(f64::NAN, f64::NAN);
+        };
+        let d = self.vector.one_minus_abs2[k];
+        let mut c = self.cycles(lambda_m);
+        if jump {
+            c += 0.5 * (self.denser_per_round_trip % 2) as f64;
+        }
+        let m = Complex64::from((1.0 - d).max(0.0).sqrt());
+        geometric_sum(m, d, c, self.dpsi(lambda_m))
+            .map_or(Complex64::new(f64::NAN, f64::NAN), |(f, _)| f)
+    }
+}
+
+/// Why a tail could not be closed exactly.
+#[derive(Clone, Debug, PartialEq)]
+pub struct NotClosable(pub String);
+
+impl std::fmt::Display for NotClosable {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.write_str(&self.0)
+    }
+}
+
+fn refuse<T>(msg: impl Into<String>) -> Result<T, NotClosable> {
+    Err(NotClosable(msg.into()))
+}
+
+/// The last two reflection coefficients (r_s, r_p) a ray's ledger records.
+fn last_two_reflections(ray: &Ray) -> Option<[(Complex64, Complex64); 2]> {
+    let mut found = Vec::with_capacity(2);
+    for e in ray
+        .ledger
+        .entries
+        .iter()
+        .collect::<Vec<_>>()
+        .into_iter()
+        .rev()
+    {
+        if let LedgerEntry::Reflection { r_s, r_p, .. } = e {
+            found.push((*r_s, *r_p));
+            if found.len() == 2 {
+                return Some([found[1], found[0]]);
+            }
+        }
+    }
+    None
+}
+
+/// 1 − |r|² for r = (x − y)/(x + y) with x real: 4 x Re(y)/|x + y|² (Stokes; 0 under TIR).
+fn stokes(x: f64, y: Complex64) -> f64 {
+    4.0 * x * y.re / (Complex64::from(x) + y).norm_sqr()
+}
+
+/// Close the tail of every plane-wave source's Airy orders in `arrivals` (traced by
+/// [`super::arrivals`] into the far field): append, per channel, one arrival whose
+/// [`Arrival::tail`] stands for all orders beyond the deepest traced one (module docs). Returns
+/// the number of arrivals appended, or why the closure would not be exact.
+pub fn close(
+    scene: &Scene,
+    optics: &SceneOptics,
+    arrivals: &mut Vec<Arrival>,
+) -> Result<usize, NotClosable> {
+    // The scene: two unbounded dielectric interfaces on one line of normals.
+    if scene.surfaces.len() != 2 {
+        return refuse(format!(
+            "the Airy tail is closed only between the two faces of one film, and this scene has \
+             {} surfaces",
+            scene.surfaces.len()
+        ));
+    }
+    for s in &scene.surfaces {
+        if !matches!(s.extent, Extent::Unbounded)
+            || !matches!(s.kind, SurfaceKind::Interface { .. })
+        {
+            return refuse(format!(
+                "the Airy tail is closed only between unbounded dielectric faces; {:?} is not one",
+                s.name
+            ));
+        }
+    }
+    let (nx, ny) = (
+        scene.surfaces[0].plane.normal,
+        scene.surfaces[1].plane.normal,
+    );
+    if nx != ny && nx != -ny {
+        return refuse(
+            "the Airy tail is closed only between parallel faces (the film's faces are not \
+             parallel: further orders are not a geometric series)",
+        );
+    }
+    let mut added = Vec::new();
+    for (si, src) in scene.sources.iter().enumerate() {
+        if !matches!(src.emitter, Emitter::PlaneWave { .. }) {
+            return refuse("the Airy tail is closed only for plane-wave sources");
+        }
+        if src.coherence_length_m.is_finite() {
+            return refuse(
+                "the Airy tail is closed only for light of infinite coherence length (finite: \
+                 far orders lose coherence by the paper's rule)",
+            );
+        }
+        let own: Vec<&Arrival> = arrivals.iter().filter(|a| a.source == si).collect();
+        let Some(deep) = own.iter().max_by_key(|a| a.path.sequence.len()).copied() else {
+            continue;
+        };
+        let seq: Vec<_> = deep.path.sequence.iter().copied().collect();
+        let len = seq.len();
+        // Exit: refractions only after the run of internal reflections.
+        let mut end = len;
+        while end > 0 && seq[end - 1].kind == EventKind::Refract {
+            end -= 1;
+        }
+        let mut start = end;
+        while start > 0 && seq[start - 1].kind == EventKind::Reflect {
+            start -= 1;
+        }
+        let run = &seq[start..end];
+        if run.len() < 2
+            || end == len
+            || run.windows(2).any(|w| w[0].surface == w[1].surface)
+            || seq[..start].iter().any(|e| e.kind == EventKind::Reflect)
+        {
+            return refuse(format!(
+                "the deepest traced sequence ({} events) does not end in a round trip between \
+                 the faces followed by refractions out",
+                len
+            ));
+        }
+        let mut shorter = seq.clone();
+        shorter.drain(start..start + 2);
+        let group = |s: &[crate::trace::path::Event]| -> Vec<&Arrival> {
+            own.iter()
+                .filter(|a| a.path.sequence.iter().eq(s.iter()))
+                .copied()
+                .collect()
+        };
+        let (deep_group, prev_group) = (group(&seq), group(&shorter));
+        if prev_group.len() != deep_group.len() {
+            return refuse("the order before the deepest one was not traced");
+        }
+        // The inside index and the indices beyond X (= run[0]'s face) and Y.
+        let path = &deep.path;
+        let n_in = path.indices[start + 1];
+        let faces = [run[0].surface, run[1].surface];
+        let mut beyond = [0.0; 2];
+        for (k, &f) in faces.iter().enumerate() {
+            let d_in = path.dirs[start + k];
+            let Some(o) = optics.surfaces[f] else {
+                return refuse("a face of the film is opaque");
+            };
+            let (a, b) = indices_for(o, scene.surfaces[f].plane.normal, d_in, n_in);
+            if a != n_in || path.indices[start + k] != n_in {
+                return refuse("the round trip does not stay in one medium");
+            }
+            beyond[k] = b;
+        }
+        for (d, p) in deep_group.iter().zip(&prev_group) {
+            let v = &d.vector;
+            if v.coherence_id == INCOHERENT || v.coherence_id != p.vector.coherence_id {
+                return refuse("the orders do not stay coherent with each other");
+            }
+            // The squared normal wavevector on the exit side, as the tracer carried it.
+            let Some((m, q2_exit)) = v.normal_q2 else {
+                return refuse("the exit ray carries no normal wavevector");
+            };
+            if m != nx && m != -nx {
+                return refuse("the exit face is not parallel to the film");
+            }
+            let n_exit = v.index;
+            let q2_at = |n: f64| {
+                if n == n_exit {
+                    q2_exit
+                } else {
+                    q2_exit + two_prod(n, n) - two_prod(n_exit, n_exit)
+                }
+            };
+            let k_of = |n: f64| {
+                let q2 = q2_at(n);
+                if q2.hi >= 0.0 {
+                    Complex64::from(q2.sqrt().to_f64())
+                } else {
+                    Complex64::new(0.0, (-q2).sqrt().to_f64())
+                }
+            };
+            let k_in = k_of(n_in).re;
+            // Per face and σ: 1 − |r|² (Stokes), then 1 − |A|² = D_X + |r_X|² D_Y.
+            let d_face = |nb: f64| {
+                let kb = k_of(nb);
+                [stokes(k_in, kb), stokes(nb * nb * k_in, kb * (n_in * n_in))]
+            };
+            let (dx, dy) = (d_face(beyond[0]), d_face(beyond[1]));
+            let d_a = [0, 1].map(|k| dx[k] + (1.0 - dx[k]) * dy[k]);
+            let vector = |ray: &Ray| -> Result<RoundTrip, NotClosable> {
+                let Some([(sx, px), (sy, py)]) = last_two_reflections(ray) else {
+                    return refuse("the ledger holds no round trip");
+                };
+                let a = [sx * sy, px * py];
+                for k in 0..2 {
+                    // The tracer's coefficients and Stokes' relations must describe one face pair.
+                    if ((1.0 - a[k].norm_sqr()) - d_a[k]).abs() > 1e-12 {
+                        return refuse(format!(
+                            "the traced round trip (|A|² = {}) does not match the faces' \
+                             Fresnel coefficients (1 − |A|² = {:e})",
+                            a[k].norm_sqr(),
+                            d_a[k]
+                        ));
+                    }
+                }
+                if d_a.iter().any(|x| *x <= 0.0) {
+                    return refuse(
+                        "both faces reflect totally (|r21 r23| = 1): the orders do not decay and \
+                         their sum does not converge",
+                    );
+                }
+                Ok(RoundTrip {
+                    a,
+                    one_minus_abs2: d_a,
+                })
+            };
+            let vector = vector(v)?;
+            // The paper's rules keep |r| of (P1)–(P4) and change only phases: their round trip
+            // is closed with their own phases and 1 − |A|² from Stokes' relations (they form
+            // |r| from an f64 cos θ, which at grazing incidence rounds |A| to 1).
+            let paper =
+                d.paper
+                    .as_ref()
+                    .and_then(last_two_reflections)
+                    .map(|[(sx, px), (sy, py)]| RoundTrip {
+                        a: [sx * sy, px * py],
+                        one_minus_abs2: d_a,
+                    });
+            let dir = v.dir;
+            let s = crate::optics::fresnel::s_of_plane_of_incidence(dir, nx)
+                .unwrap_or_else(|| dir.any_orthonormal_vector());
+            let closure = TailClosure {
+                round_trip_path: v.optical_path - p.vector.optical_path,
+                s,
+                p: dir.cross(s),
+                vector,
+                paper,
+                denser_per_round_trip: d
+                    .path
+                    .denser_reflections
+                    .saturating_sub(p.path.denser_reflections),
+                traced_orders: (run.len() + 1) / 2,
+            };
+            let mut a = (*d).clone();
+            a.tail = Some(Arc::new(closure));
+            added.push(a);
+        }
+    }
+    let n = added.len();
+    arrivals.extend(added);
+    Ok(n)
+}
