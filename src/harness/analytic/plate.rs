@@ -3,7 +3,7 @@
 //! source (paper §4.2, Fig. 4 left) with the geometry solved here in one dimension.
 
 use super::precise;
-use crate::optics::fresnel::fresnel;
+use crate::optics::fresnel::{fresnel, fresnel_with_cos2_t};
 use num_complex::Complex64;
 use twofloat::TwoFloat;
 
@@ -58,6 +58,76 @@ pub struct Film {
     pub thickness_m: f64,
 }
 
+/// The angle of incidence of a plane wave on a film, held as cos²θ1 in double-double: near a
+/// critical angle cos²θ2 = 1 − (n1/n2)² sin²θ1 cancels, and a cos θ1 rounded to f64 before it
+/// is squared moved R by up to 5e-5 there (fuzz `airy`, near_critical). From an f64 cos θ1 the
+/// square is exact ([`From<f64>`]); [`Incidence::between`] forms it from a direction and a
+/// normal as the tracer does (`optics::interaction::normal_wavevector_squares`).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Incidence {
+    /// cos²θ1, double-double, in [0, 1].
+    pub cos_sq: TwoFloat,
+}
+
+impl From<f64> for Incidence {
+    fn from(cos_theta_1: f64) -> Self {
+        Incidence {
+            cos_sq: TwoFloat::new_mul(cos_theta_1, cos_theta_1),
+        }
+    }
+}
+
+impl Incidence {
+    /// cos²θ1 = (d·N)²/(|d|²|N|²) of the f64 vectors `direction` and `normal` (neither needs
+    /// unit length), with exact products.
+    pub fn between(direction: glam::DVec3, normal: glam::DVec3) -> Self {
+        let dot = |a: glam::DVec3, b: glam::DVec3| {
+            TwoFloat::new_mul(a.x, b.x) + TwoFloat::new_mul(a.y, b.y) + TwoFloat::new_mul(a.z, b.z)
+        };
+        let c = dot(direction, normal);
+        let cos_sq = precise::div(c * c, dot(direction, direction) * dot(normal, normal));
+        Incidence {
+            cos_sq: if cos_sq.hi() > 1.0 {
+                TwoFloat::from(1.0)
+            } else {
+                cos_sq
+            },
+        }
+    }
+
+    /// cos θ1 rounded to f64.
+    pub fn cos(&self) -> f64 {
+        f64::from(self.cos_sq.sqrt())
+    }
+
+    /// sin²θ1 = 1 − cos²θ1, double-double.
+    pub fn sin_sq(&self) -> TwoFloat {
+        TwoFloat::from(1.0) - self.cos_sq
+    }
+}
+
+/// The fraction of the source intensity below which the evanescent coupling through a layer
+/// beyond its top face's critical angle (frustrated total reflection, docs/PHYSICS.md §5) is
+/// neglected, so that the ray model's total reflection (R = |r12|² = 1, T = 0) is the exact
+/// answer to within it. It is 1/10 of the smallest tolerance the gate derives (1e-12,
+/// `harness::conditioning`): a scene whose exact and ray-model answers differ by more is refused,
+/// never compared against a closed form that knows what the tracer cannot trace.
+pub const FTIR_NEGLIGIBLE: f64 = 1e-13;
+
+/// The difference between the exact Airy answer and the ray model's total reflection beyond
+/// the critical angle of a film's top face ([`Film::frustration`]), the largest over s and p.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Frustration {
+    /// |r − r12|: the amplitude the evanescent coupling adds to the reflected wave.
+    pub amplitude: f64,
+    /// |R − |r12|²| (R − 1 for lossless media).
+    pub reflectance: f64,
+    /// T, the power transmittance the ray model sets to 0.
+    pub transmittance: f64,
+    /// κ = (2π/λ) sqrt(n1² sin²θ1 − n2²), 1/m: the field decays as e^{−κz} in the film.
+    pub kappa_per_m: f64,
+}
+
 /// The quantities of the Airy sum at one angle, wavelength and polarization.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct AiryTerms {
@@ -73,7 +143,8 @@ pub struct AiryTerms {
     pub r23: Complex64,
     /// Transmission amplitude through face 2 into medium 3.
     pub t23: Complex64,
-    /// Round-trip phase β = (4π/λ) n2 d cos θ2.
+    /// Round-trip phase β = (4π/λ) n2 d cos θ2 (0 beyond the critical angle of face 1, where
+    /// cos θ2 is imaginary and the round trip is the real decay `round_trip`).
     pub beta: f64,
     /// cos θ1 and cos θ3 (for the power ratio of transmission).
     pub cos1: f64,
@@ -81,27 +152,40 @@ pub struct AiryTerms {
     pub cos3: f64,
     /// e^{iβ} and e^{iβ/2}, from β/2π = 2 n2 d cos θ2/λ formed in double-double and reduced to
     /// a fraction of a cycle before rounding (the f64 `beta` of a 1 mm plate carries ~1e-12 rad).
+    /// Beyond the critical angle of face 1 (cos θ2 = i sqrt(−cos²θ2), e^{-iωt}) e^{iβ} = e^{−2κd},
+    /// κ = (2π/λ) n2 sqrt(−cos²θ2) = (2π/λ) sqrt(n1² sin²θ1 − n2²): frustrated total reflection.
     pub round_trip: Complex64,
     /// e^{iβ/2}.
     pub half_trip: Complex64,
+    /// Whether the film carries only an evanescent wave (beyond the critical angle of face 1).
+    pub evanescent: bool,
+    /// κ = (2π/λ) n2 |cos θ2| (1/m) of the evanescent wave; 0 for a propagating one.
+    pub kappa_per_m: f64,
 }
 
 impl Film {
-    /// The Fresnel coefficients and round-trip phase at incidence cos θ1 (must not be TIR at
-    /// the 1→2 interface).
-    pub fn terms(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> AiryTerms {
-        // Every cosine from cos θ1 by Snell's law, in double-double: cos²θk = 1 − (n1/nk)²
+    /// The Fresnel coefficients and round-trip factor at incidence θ1 (cos θ1 as an f64 or an
+    /// [`Incidence`]); beyond the critical angle of face 1 with the imaginary cos θ2 of
+    /// frustrated total reflection (docs/PHYSICS.md §5).
+    pub fn terms(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> AiryTerms {
+        let inc: Incidence = incidence.into();
+        // Every cosine from cos²θ1 by Snell's law, in double-double: cos²θk = 1 − (n1/nk)²
         // sin²θ1. (Taking cos θ3 from a rounded cos θ2, as a chain of Fresnel kernels would,
         // loses digits where the wave leaves the film near grazing: an ulp of cos θ2 moved R by
         // 5e-15 at θ1 = 89.7°, found by the 50-digit test.)
         let one = TwoFloat::from(1.0);
-        let sin2 = one - TwoFloat::new_mul(cos_theta_1, cos_theta_1);
+        let sin2 = inc.sin_sq();
         let cos_sq = |nk: f64| {
             let ratio = precise::div(TwoFloat::from(self.n1), TwoFloat::from(nk));
             one - sin2 * ratio * ratio
         };
+        let cos_theta_1 = inc.cos();
         let c2sq = cos_sq(self.n2);
-        let cos2_dd = if c2sq.hi() > 0.0 {
+        let evanescent = c2sq.hi() < 0.0;
+        // |cos θ2| in double-double: real, or the modulus of the imaginary cosine.
+        let cos2_dd = if evanescent {
+            (-c2sq).sqrt()
+        } else if c2sq.hi() > 0.0 {
             c2sq.sqrt()
         } else {
             TwoFloat::from(0.0)
@@ -116,13 +200,31 @@ impl Film {
         };
         let cos3 = c3.re;
         let c1 = Complex64::from(cos_theta_1);
-        let c2 = Complex64::from(cos2);
+        let c2 = if evanescent {
+            Complex64::new(0.0, cos2)
+        } else {
+            Complex64::from(cos2)
+        };
         let (r12, t12) = coefficients(self.n1, c1, self.n2, c2, pol);
         let (r21, t21) = coefficients(self.n2, c2, self.n1, c1, pol);
         let (r23, t23) = coefficients(self.n2, c2, self.n3, c3, pol);
         // β/2π in double-double: 2 n2 d cos θ2/λ without rounding; whole cycles removed
-        // before the phasor.
+        // before the phasor. Evanescent: e^{iβ} = e^{−2π·2 n2 d |cos θ2|/λ}, real and < 1.
         let optical = cos2_dd * TwoFloat::new_mul(2.0 * self.n2, self.thickness_m);
+        let (round_trip, half_trip, beta) = if evanescent {
+            let decay = f64::from(optical) * std::f64::consts::TAU / lambda_m;
+            (
+                Complex64::from((-decay).exp()),
+                Complex64::from((-0.5 * decay).exp()),
+                0.0,
+            )
+        } else {
+            (
+                precise::path_phasor(optical, lambda_m),
+                precise::path_phasor(optical * 0.5, lambda_m),
+                4.0 * std::f64::consts::PI * self.n2 * self.thickness_m * cos2 / lambda_m,
+            )
+        };
         AiryTerms {
             r12,
             t12,
@@ -130,11 +232,17 @@ impl Film {
             t21,
             r23,
             t23,
-            beta: 4.0 * std::f64::consts::PI * self.n2 * self.thickness_m * cos2 / lambda_m,
+            beta,
             cos1: cos_theta_1,
             cos3,
-            round_trip: precise::path_phasor(optical, lambda_m),
-            half_trip: precise::path_phasor(optical * 0.5, lambda_m),
+            round_trip,
+            half_trip,
+            evanescent,
+            kappa_per_m: if evanescent {
+                std::f64::consts::TAU * self.n2 * cos2 / lambda_m
+            } else {
+                0.0
+            },
         }
     }
 
@@ -144,42 +252,89 @@ impl Film {
     /// relies on those identities holding to the last bit, and near grazing, where R → 1 and
     /// t12 t21 → 0, f64 coefficients that satisfy them only to rounding cost ~40 ε of R
     /// (found by the 50-digit test, `tests/suite/closed_form_precision.rs`).
-    pub fn r(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
-        let a = self.terms(cos_theta_1, lambda_m, pol);
+    pub fn r(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> Complex64 {
+        let a = self.terms(incidence, lambda_m, pol);
         let e = a.round_trip;
         (a.r12 + a.r23 * e) / (1.0 + a.r12 * a.r23 * e)
     }
 
     /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}), with r21 = −r12.
-    pub fn t(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> Complex64 {
-        let a = self.terms(cos_theta_1, lambda_m, pol);
+    pub fn t(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> Complex64 {
+        let a = self.terms(incidence, lambda_m, pol);
         a.t12 * a.t23 * a.half_trip / (1.0 + a.r12 * a.r23 * a.round_trip)
     }
 
     /// Reflectance R = |r|².
-    pub fn reflectance(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> f64 {
-        self.r(cos_theta_1, lambda_m, pol).norm_sqr()
+    pub fn reflectance(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> f64 {
+        self.r(incidence, lambda_m, pol).norm_sqr()
     }
 
     /// Transmittance T = (n3 cos θ3)/(n1 cos θ1)·|t|² (0 when the wave cannot leave into n3).
-    pub fn transmittance(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol) -> f64 {
-        let a = self.terms(cos_theta_1, lambda_m, pol);
+    pub fn transmittance(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> f64 {
+        let a = self.terms(incidence, lambda_m, pol);
         if a.cos3 == 0.0 {
             return 0.0;
         }
-        self.n3 * a.cos3 / (self.n1 * cos_theta_1) * self.t(cos_theta_1, lambda_m, pol).norm_sqr()
+        let t = a.t12 * a.t23 * a.half_trip / (1.0 + a.r12 * a.r23 * a.round_trip);
+        self.n3 * a.cos3 / (self.n1 * a.cos1) * t.norm_sqr()
+    }
+
+    /// Beyond the critical angle of face 1 (frustrated total reflection, docs/PHYSICS.md §5):
+    /// how far the exact Airy answer is from the ray model's total reflection at face 1, which
+    /// reflects r12 (|r12| = 1) and lets nothing into the film. `None` when the film carries a
+    /// propagating wave. All three differences are O(e^{−2κd}) and vanish exactly when the exit
+    /// medium is beyond its own critical angle too (no wave can carry power out).
+    pub fn frustration(
+        &self,
+        incidence: impl Into<Incidence>,
+        lambda_m: f64,
+    ) -> Option<Frustration> {
+        let inc: Incidence = incidence.into();
+        let mut out = Frustration {
+            amplitude: 0.0,
+            reflectance: 0.0,
+            transmittance: 0.0,
+            kappa_per_m: 0.0,
+        };
+        for pol in [Pol::S, Pol::P] {
+            let a = self.terms(inc, lambda_m, pol);
+            if !a.evanescent {
+                return None;
+            }
+            let e = a.round_trip;
+            // r − r12 = r23 e (1 − r12²)/(1 + r12 r23 e): no cancellation.
+            let dr = a.r23 * e * (1.0 - a.r12) * (1.0 + a.r12) / (1.0 + a.r12 * a.r23 * e);
+            let r = a.r12 + dr;
+            out.amplitude = out.amplitude.max(dr.norm());
+            out.reflectance = out.reflectance.max((r.norm_sqr() - a.r12.norm_sqr()).abs());
+            out.transmittance = out
+                .transmittance
+                .max(self.transmittance(inc, lambda_m, pol));
+            out.kappa_per_m = a.kappa_per_m;
+        }
+        Some(out)
+    }
+
+    /// The thickness (m) from which the evanescent coupling `deviation` (of a film of this
+    /// thickness) falls to `limit`, if it decays as e^{−2κd} from here: d + ln(deviation/limit)/(2κ).
+    pub fn thickness_for(&self, f: &Frustration, deviation: f64, limit: f64) -> f64 {
+        if f.kappa_per_m > 0.0 && deviation > limit {
+            self.thickness_m + (deviation / limit).ln() / (2.0 * f.kappa_per_m)
+        } else {
+            f64::INFINITY
+        }
     }
 
     /// The reflection amplitude summed over the first `orders` reflected beams only: order 0 is
     /// r12, order m ≥ 1 is t12 t21 r23 (r21 r23)^{m−1} e^{imβ} (m round trips).
     pub fn r_truncated(
         &self,
-        cos_theta_1: f64,
+        incidence: impl Into<Incidence>,
         lambda_m: f64,
         pol: Pol,
         orders: usize,
     ) -> Complex64 {
-        let a = self.terms(cos_theta_1, lambda_m, pol);
+        let a = self.terms(incidence, lambda_m, pol);
         if orders == 0 {
             return Complex64::default();
         }
@@ -198,14 +353,22 @@ impl Film {
     }
 
     /// Bound on the amplitude of the reflected orders left out after `orders` beams:
-    /// |t12 t21 r23| |r21 r23|^{orders−1}/(1 − |r21 r23|) (geometric tail).
-    pub fn r_tail_bound(&self, cos_theta_1: f64, lambda_m: f64, pol: Pol, orders: usize) -> f64 {
-        let a = self.terms(cos_theta_1, lambda_m, pol);
-        let q = (a.r21 * a.r23).norm();
+    /// |t12 t21 r23 e^{iβ}| |r21 r23 e^{iβ}|^{orders−1}/(1 − |r21 r23 e^{iβ}|) (geometric tail;
+    /// |e^{iβ}| = 1 for a propagating wave in the film, e^{−2κd} for an evanescent one).
+    pub fn r_tail_bound(
+        &self,
+        incidence: impl Into<Incidence>,
+        lambda_m: f64,
+        pol: Pol,
+        orders: usize,
+    ) -> f64 {
+        let a = self.terms(incidence, lambda_m, pol);
+        let decay = a.round_trip.norm();
+        let q = (a.r21 * a.r23).norm() * decay;
         if q >= 1.0 {
             return f64::INFINITY;
         }
-        let first = (a.t12 * a.t21 * a.r23).norm();
+        let first = (a.t12 * a.t21 * a.r23).norm() * decay;
         first * q.powi(orders.saturating_sub(1) as i32) / (1.0 - q)
     }
 
@@ -213,13 +376,14 @@ impl Film {
     /// cost grows like log(1/ε)/log(1/|r21 r23|).
     pub fn orders_for_bound(
         &self,
-        cos_theta_1: f64,
+        incidence: impl Into<Incidence>,
         lambda_m: f64,
         pol: Pol,
         epsilon: f64,
     ) -> usize {
+        let inc: Incidence = incidence.into();
         let mut n = 1;
-        while self.r_tail_bound(cos_theta_1, lambda_m, pol, n) > epsilon && n < 100_000 {
+        while self.r_tail_bound(inc, lambda_m, pol, n) > epsilon && n < 100_000 {
             n += 1;
         }
         n
@@ -263,7 +427,20 @@ impl TwoBeamPlate {
         let theta = x_m.atan2(h);
         // cos θ = h/√(x² + h²) keeps its relative precision near grazing, where cos(atan2)
         // loses it (an absolute error of 1e-16 on cos θ ≈ 1e-4).
-        let f = fresnel(self.n1, self.n2, h / x_m.hypot(h));
+        // cos²θt = 1 − (n1/n2)² x²/(x² + h²) in double-double: near the critical angle, and
+        // beyond it where r12 = e^{iφ} is the total reflection of an ambient denser than the
+        // plate, an f64 cos²θt cancels (docs/PHYSICS.md §5).
+        let f = if self.n1 == self.n2 {
+            fresnel(self.n1, self.n2, h / x_m.hypot(h))
+        } else {
+            let sin_sq = precise::div(
+                TwoFloat::new_mul(x_m, x_m),
+                TwoFloat::new_mul(x_m, x_m) + TwoFloat::new_mul(h, h),
+            );
+            let ratio = precise::div(TwoFloat::from(self.n1), TwoFloat::from(self.n2));
+            let c2t = TwoFloat::from(1.0) - sin_sq * ratio * ratio;
+            fresnel_with_cos2_t(self.n1, self.n2, h / x_m.hypot(h), f64::from(c2t))
+        };
         Beam {
             theta,
             optical_path_m: self.n1 * x_m.hypot(h),

@@ -4,7 +4,8 @@
 
 use super::build::{Built, plane_wave};
 use super::spec::{BeamSpec, FarSide, Observer, ReferenceModel};
-use crate::harness::analytic::{self, michelson, plate::Pol};
+use crate::harness::analytic::plate::{FTIR_NEGLIGIBLE, Incidence, Pol};
+use crate::harness::analytic::{self, michelson, precise};
 use crate::optics::fresnel;
 use crate::optics::material::Medium;
 use crate::optics::observable::{Observable, Returns, power_factor};
@@ -13,6 +14,7 @@ use crate::scene::source::{Channel, Emitter, Source};
 use crate::trace::path::{Event, EventKind, Target};
 use glam::DVec3;
 use num_complex::Complex64;
+use twofloat::TwoFloat;
 
 /// How a reference is compared with the trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -110,6 +112,11 @@ pub fn observable_factor(
     let normal = DVec3::from_array(*surface_normal);
     Ok(power_factor(n_in, d_in, n_out, *dir, normal))
 }
+
+/// The largest tan θt inside a plate at which the two-beam closed form still solves for the beam
+/// through the plate when the top beam is totally reflected (see the `two_beam_plate` arm of
+/// [`value`]): cos θt ≥ 1e-3.
+pub const MAX_GRAZING_TAN: f64 = 1e3;
 
 /// Short name of a reference model for tables (the serde tag).
 pub fn name(model: &ReferenceModel) -> String {
@@ -341,22 +348,61 @@ pub fn value(
                 h_obs_m: plane.signed_distance(p),
             };
             // Beyond the critical angle of the top face (an ambient denser than the plate) the
-            // top beam is totally reflected and the plate carries an evanescent wave to the far
-            // face (frustrated total reflection): zero-thickness rays carry no such wave and the
-            // two-beam sum of propagating beams does not describe it (docs/PHYSICS.md §5).
+            // top beam is totally reflected (|r12| = 1, complex phase) and the beam through the
+            // plate still exists, entering at a smaller angle nearer the source. The plate then
+            // also carries an evanescent wave to its far face (frustrated total reflection),
+            // which zero-thickness rays do not trace: its coupling at the top beam's angle moves
+            // the top beam's amplitude by |r − r12| (the plane-wave Airy sum with imaginary
+            // cos θ2, docs/PHYSICS.md §5), the intensity by at most (4 + |r − r12|)|r − r12| of
+            // the source's. Compared only where that is below FTIR_NEGLIGIBLE.
             let x = horiz.length();
-            let sin1 = x / x.hypot(t.h_src_m + t.h_obs_m);
-            if t.n1 * sin1 >= t.n2 {
-                return Err(format!(
-                    "the light meets the plate at θ1 = {:.4}°, at or beyond the critical angle \
-                     {:.4}° of its top face (n1 = {} > n2 = {}): it enters the plate only as an \
-                     evanescent wave (frustrated total reflection), which neither ray optics nor \
-                     the two-beam sum describes; keep θ1 below the critical angle",
-                    sin1.asin().to_degrees(),
-                    (t.n2 / t.n1).asin().to_degrees(),
-                    t.n1,
-                    t.n2
-                ));
+            let h = t.h_src_m + t.h_obs_m;
+            let sin1_sq = precise::div(
+                TwoFloat::new_mul(x, x),
+                TwoFloat::new_mul(x, x) + TwoFloat::new_mul(h, h),
+            );
+            let inc = Incidence {
+                cos_sq: TwoFloat::from(1.0) - sin1_sq,
+            };
+            let layer = analytic::plate::Film {
+                n1: t.n1,
+                n2: t.n2,
+                n3: t.n1,
+                thickness_m: t.thickness_m,
+            };
+            if let Some(fr) = layer.frustration(inc, lambda_m) {
+                let deviation = (4.0 + fr.amplitude) * fr.amplitude;
+                if deviation > FTIR_NEGLIGIBLE {
+                    return Err(frustrated_refusal(
+                        &layer,
+                        &fr,
+                        deviation,
+                        inc,
+                        "the two-beam intensity",
+                        "plate",
+                    ));
+                }
+                // The beam through the plate must enter below the critical angle, at sin θ <
+                // n2/n1, so it covers the rest of the lateral distance grazing inside the
+                // plate: tan θt ≥ (x − (h_s + h_o) tan θc)/(2d). Its entry point is found by a
+                // root solve whose slope is a finite difference over 1e-7 of the entry offset
+                // (`plate::TwoBeamPlate::beam_bottom`), which needs cos θt ≳ 1e-3.
+                let tan_c = t.n2 / (t.n1 * t.n1 - t.n2 * t.n2).sqrt();
+                let tan_t = (x - h * tan_c) / (2.0 * t.thickness_m);
+                if tan_t > MAX_GRAZING_TAN {
+                    return Err(format!(
+                        "the top beam meets the plate beyond the critical angle {:.4}° of its top \
+                         face (n1 = {} > n2 = {}), so the beam through the plate enters below it \
+                         and runs grazing inside the {:e} m plate, at tan θt ≥ {tan_t:.4e} over \
+                         {x:.4e} m: beyond tan θt = {MAX_GRAZING_TAN:e}, where the two-beam \
+                         closed form's entry point cannot be resolved (cos θt → 0 at the critical \
+                         angle); a thicker plate or a probe nearer the source is accepted",
+                        (t.n2 / t.n1).asin().to_degrees(),
+                        t.n1,
+                        t.n2,
+                        t.thickness_m,
+                    ));
+                }
             }
             Ok(src.intensity
                 * if basis_free {
@@ -498,29 +544,113 @@ fn airy(
     let Target::Direction { dir, .. } = target else {
         return Err("airy needs a far-field observer".into());
     };
-    let cos1 = d.dot(nrm).abs();
+    // cos²θ1 in double-double from the f64 direction and normal, as the tracer forms it: near
+    // a critical angle an f64 cos θ1 moved R by up to 5e-5 (docs/PHYSICS.md §5).
+    let inc = Incidence::between(d, nrm);
     let reflected = dir.dot(nrm).signum() != d.dot(nrm).signum();
+    // Beyond the critical angle of the top face (frustrated total reflection): the exact Airy
+    // sum with imaginary cos θ2 differs from the ray model's total reflection by O(e^{−2κd});
+    // compared only where that is below FTIR_NEGLIGIBLE of the source intensity.
+    if let Some(fr) = f.frustration(inc, lambda_m) {
+        let deviation = if reflected {
+            fr.reflectance
+        } else {
+            fr.transmittance
+        };
+        if deviation > FTIR_NEGLIGIBLE {
+            return Err(frustrated_refusal(
+                &f,
+                &fr,
+                deviation,
+                inc,
+                if reflected { "R" } else { "T" },
+                "film",
+            ));
+        }
+        if !reflected {
+            // The ray model's T = 0, exact to FTIR_NEGLIGIBLE (the probe is dark by physics).
+            return Ok(0.0);
+        }
+    }
     // Split each channel into s and p at the film (one plane of incidence for every beam).
     let s = fresnel::s_direction(d, nrm, src.channels()[0].field_direction(d));
     let p = d.cross(s);
+    let (vs, vp) = if reflected {
+        (
+            f.reflectance(inc, lambda_m, Pol::S),
+            f.reflectance(inc, lambda_m, Pol::P),
+        )
+    } else {
+        (
+            f.transmittance(inc, lambda_m, Pol::S),
+            f.transmittance(inc, lambda_m, Pol::P),
+        )
+    };
     let mut total = 0.0;
     for ch in src.channels() {
         let e = ch.launch_field(d);
         let (fs, fp) = (e.dot(s).powi(2), e.dot(p).powi(2));
-        let (vs, vp) = if reflected {
-            (
-                f.reflectance(cos1, lambda_m, Pol::S),
-                f.reflectance(cos1, lambda_m, Pol::P),
-            )
-        } else {
-            (
-                f.transmittance(cos1, lambda_m, Pol::S),
-                f.transmittance(cos1, lambda_m, Pol::P),
-            )
-        };
         total += ch.intensity * (fs * vs + fp * vp);
     }
     Ok(total)
+}
+
+/// Whether a probe of the `airy` reference `model` sees a film beyond its top face's critical
+/// angle (frustrated total reflection with negligible coupling, [`airy`]): the transmitted
+/// side is then dark by physics (T = 0 to [`FTIR_NEGLIGIBLE`]), not a misplaced probe.
+pub fn frustrated(model: &ReferenceModel, built: &Built, lambda_m: f64) -> bool {
+    let ReferenceModel::Airy {
+        film,
+        index_override,
+    } = model
+    else {
+        return false;
+    };
+    let Ok((mut f, _)) = airy_film(built, film, lambda_m) else {
+        return false;
+    };
+    if let Some(n) = index_override {
+        f.n2 = *n;
+    }
+    let (Ok(top), Some((d, _))) = (
+        built.surface(&format!("{film}.top")),
+        plane_wave(&built.scene),
+    ) else {
+        return false;
+    };
+    let inc = Incidence::between(d, built.scene.surfaces[top].plane.normal);
+    f.frustration(inc, lambda_m)
+        .is_some_and(|fr| fr.transmittance <= FTIR_NEGLIGIBLE)
+}
+
+/// The refusal of a layer lit beyond its top face's critical angle whose evanescent coupling
+/// (`deviation` of the observable `what` from the ray model's total reflection, as a fraction
+/// of the source intensity) is not negligible.
+fn frustrated_refusal(
+    f: &analytic::plate::Film,
+    fr: &analytic::plate::Frustration,
+    deviation: f64,
+    inc: Incidence,
+    what: &str,
+    layer: &str,
+) -> String {
+    let sin1 = f64::from(inc.sin_sq().sqrt());
+    format!(
+        "the light meets the {layer} at θ1 = {:.4}°, beyond the critical angle {:.4}° of its top \
+         face (n1 = {} > n2 = {}): the {layer} carries an evanescent wave (κ = {:.4e} /m) to its \
+         far face, and this frustrated total reflection moves {what} by {deviation:.3e} of the \
+         source intensity from the ray model's total reflection, more than the {:e} a trace can \
+         be held to (docs/PHYSICS.md §5); a {layer} thicker than {:.4e} m (it is {:.4e} m), or θ1 \
+         farther from the critical angle, is accepted",
+        sin1.asin().to_degrees(),
+        (f.n2 / f.n1).asin().to_degrees(),
+        f.n1,
+        f.n2,
+        fr.kappa_per_m,
+        FTIR_NEGLIGIBLE,
+        f.thickness_for(fr, deviation, FTIR_NEGLIGIBLE),
+        f.thickness_m,
+    )
 }
 
 /// The media above, inside and below the plate or wedge `name`, read from its two faces (the
@@ -565,23 +695,11 @@ pub fn airy_film(
         n3: ix(m3)?,
         thickness_m: plate_thickness(scene, top, bottom),
     };
+    // Beyond the critical angle of the top face the film carries an evanescent wave
+    // (frustrated total reflection): the Airy sum holds with imaginary cos θ2
+    // ([`analytic::plate::Film::terms`]), and [`airy`] decides whether the ray model's total
+    // reflection is exact enough to be compared.
     let cos1 = d.dot(nrm).abs();
-    // Beyond the critical angle of the top face the film carries only an evanescent wave
-    // (frustrated total reflection): no ray enters it and the Airy sum of propagating beams
-    // has no meaning (its cos θ2 would be imaginary).
-    let sin1 = (1.0 - cos1 * cos1).max(0.0).sqrt();
-    if film.n1 * sin1 >= film.n2 {
-        return Err(format!(
-            "the light meets the film at θ1 = {:.4}°, at or beyond the critical angle {:.4}° of its \
-             top face (n1 = {} > n2 = {}): it enters the film only as an evanescent wave \
-             (frustrated total reflection), which neither ray optics nor the Airy sum of \
-             propagating beams describes; keep θ1 below the critical angle",
-            sin1.asin().to_degrees(),
-            (film.n2 / film.n1).asin().to_degrees(),
-            film.n1,
-            film.n2
-        ));
-    }
     Ok((film, cos1))
 }
 

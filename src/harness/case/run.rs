@@ -848,7 +848,13 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             out.arrivals = arr.len();
             out.needs = trace::needs(&arr);
             center_arrivals = arr;
-            out.evanescent = target.is_none();
+            // Dark by physics: no transmitted wave, or a film beyond its top face's critical
+            // angle whose transmittance is negligible (frustrated total reflection).
+            out.evanescent = target.is_none()
+                || spec
+                    .references
+                    .iter()
+                    .any(|r| reference::frustrated(&r.model, built, lambda));
             center_target = target;
             center = lambda;
         }

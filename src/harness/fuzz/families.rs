@@ -456,13 +456,18 @@ fn wedge(d: &mut Draws, tags: &mut Vec<&'static str>) -> Result<Value, String> {
     // The beam reflected by the bottom face leaves the top face at θe (sin θe = n sin 2α / n0)
     // and walks off sideways by h tan θe before reaching the probe at height h: keep its
     // starting point on the wedge (where the thickness is positive).
+    // When n sin 2α ≥ n0 that beam is totally reflected at the top face and never leaves it
+    // toward the probe (its next bottom reflection steepens it to 4α): the probe sees the top
+    // beam alone, a valid scene (`analytic::wedge`), at any height.
     let sin_exit = n * (2.0 * alpha_deg.to_radians()).sin() / n0;
-    if sin_exit >= 1.0 {
-        return Err("wedge: the beam reflected by the bottom face is totally reflected at the top face (n sin 2α ≥ n0), no second beam leaves the wedge".into());
-    }
-    let tan_exit = sin_exit / (1.0 - sin_exit * sin_exit).sqrt();
     let room = reach - centre.abs() - half;
-    let h_obs = d.log(1e-6, 1.0).min(0.5 * room / tan_exit);
+    let h_obs = if sin_exit >= 1.0 {
+        tags.push("second_beam_tir");
+        d.log(1e-6, 1.0)
+    } else {
+        let tan_exit = sin_exit / (1.0 - sin_exit * sin_exit).sqrt();
+        d.log(1e-6, 1.0).min(0.5 * room / tan_exit)
+    };
     if h_obs <= 0.0 {
         return Err("wedge: no probe height keeps the second beam on the wedge".into());
     }
