@@ -559,50 +559,69 @@ fn parallel_stack_launch(
     let along = (target - source).dot(nu) * nu;
     let lateral = target - source - along;
     let d = lateral.length();
+    // The invariant in double-double: near grazing, p is within a rounding of n0 (cos θ0 =
+    // 8.7e-9 puts p at n0 (1 − 3.8e-17), below the ulp of 1), so an f64 p rounds to n0 and
+    // the launch is parallel to the plate: the beam through a plate was lost (`Missed`) or,
+    // one ulp off, cos θ0 and the landing carried a relative error of ~u/cos²θ0 (`fringe fuzz
+    // --family two_beam_plate --seed 1`, scenes 106, 129, docs/PHYSICS.md §8). Newton's method
+    // runs on p in double-double and cos θ0 = √((n0 − p)(n0 + p))/n0 is formed from it, so both
+    // direction components keep their relative precision at any angle.
+    let dd = DoubleDouble::from_f64;
     let p = if d == 0.0 {
-        0.0
+        dd(0.0)
     } else {
         let p_max = runs.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
         let height: f64 = runs.iter().map(|r| r.0).sum();
-        let f = |p: f64| -> (f64, f64) {
-            runs.iter().fold((-d, 0.0), |(f, df), &(h, n)| {
-                let c2 = (n - p) * (n + p);
-                (f + h * p / c2.sqrt(), df + h * n * n / (c2 * c2.sqrt()))
+        // f(p) in double-double and f'(p) in f64; f = +∞ where a segment's cosine vanishes.
+        let f = |p: DoubleDouble| -> (DoubleDouble, f64) {
+            runs.iter().fold((dd(-d), 0.0), |(f, df), &(h, n)| {
+                let c2 = (dd(n) - p) * (dd(n) + p);
+                if c2.hi <= 0.0 {
+                    return (dd(f64::INFINITY), f64::INFINITY);
+                }
+                let c = c2.sqrt();
+                let c2f = c2.to_f64();
+                (f + (p * h) / c, df + h * n * n / (c2f * c.to_f64()))
             })
         };
         // Start where every segment had the lowest index (f ≤ 0 there).
-        let (mut lo, mut hi) = (0.0, p_max);
-        let mut p = p_max * d / d.hypot(height);
-        // Quadratic convergence: a few steps reach rounding level (a few ulps of p_max).
-        let ulps = 4.0 * f64::EPSILON * p_max;
-        for _ in 0..100 {
+        let (mut lo, mut hi) = (dd(0.0), dd(p_max));
+        let mut p = dd(p_max * d / d.hypot(height));
+        // Quadratic convergence: a few steps reach the double-double rounding of p_max.
+        let ulps = 1e-31 * p_max;
+        for _ in 0..256 {
             let (fp, dfp) = f(p);
-            if fp == 0.0 {
+            if fp.hi == 0.0 {
                 break;
             }
-            if fp < 0.0 {
+            if fp.hi < 0.0 {
                 lo = p
             } else {
                 hi = p
             }
-            let newton = p - fp / dfp;
-            if (newton - p).abs() <= ulps {
+            let step = if dfp.is_finite() && dfp > 0.0 {
+                fp.to_f64() / dfp
+            } else {
+                f64::NAN
+            };
+            let newton = p - dd(step);
+            if step.abs() <= ulps {
                 p = newton;
                 break;
             }
-            p = if newton > lo && newton < hi {
+            p = if (newton - lo).hi > 0.0 && (hi - newton).hi > 0.0 {
                 newton
             } else {
-                0.5 * (lo + hi)
+                (lo + hi).mul_f64(0.5)
             };
-            if hi - lo <= ulps {
+            if (hi - lo).hi <= ulps {
                 break;
             }
         }
         p
     };
-    let sin0 = p / n0;
-    let cos0 = ((n0 - p) * (n0 + p)).sqrt() / n0;
+    let sin0 = (p / dd(n0)).to_f64();
+    let cos0 = (((dd(n0) - p) * (dd(n0) + p)).sqrt() / dd(n0)).to_f64();
     let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
     Some(sin0 * u + cos0 * first_up * nu)
 }
