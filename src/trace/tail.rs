@@ -68,7 +68,8 @@ pub struct TailClosure {
     pub paper: Option<RoundTrip>,
     /// Reflections from the denser side per round trip (the half cycles of `scalar_jump`).
     pub denser_per_round_trip: usize,
-    /// Reflected orders traced explicitly before the closure (information).
+    /// N, the index of the deepest order traced explicitly (information): the closure adds
+    /// orders N + 1, N + 2, … (order 0 is the top reflection, or the direct pass through).
     pub traced_orders: usize,
 }
 
@@ -424,7 +425,7 @@ pub fn close(
                     .path
                     .denser_reflections
                     .saturating_sub(p.path.denser_reflections),
-                traced_orders: (run.len() + 1) / 2,
+                traced_orders: run.len().div_ceil(2),
             };
             let mut a = (*d).clone();
             a.tail = Some(Arc::new(closure));
