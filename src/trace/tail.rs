@@ -298,6 +298,13 @@ pub fn close(
             start -= 1;
         }
         let run = &seq[start..end];
+        if run.is_empty() {
+            return refuse(format!(
+                "no order with an internal reflection reached the probe (the deepest traced \
+                 sequence has {len} event(s)): the path solver did not land the orders through \
+                 the film here"
+            ));
+        }
         if run.len() < 2
             || end == len
             || run.windows(2).any(|w| w[0].surface == w[1].surface)
