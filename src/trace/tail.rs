@@ -68,7 +68,8 @@ pub struct TailClosure {
     pub paper: Option<RoundTrip>,
     /// Reflections from the denser side per round trip (the half cycles of `scalar_jump`).
     pub denser_per_round_trip: usize,
-    /// Reflected orders traced explicitly before the closure (information).
+    /// N, the index of the deepest order traced explicitly (information): the closure adds
+    /// orders N + 1, N + 2, … (order 0 is the top reflection, or the direct pass through).
     pub traced_orders: usize,
 }
 
@@ -297,6 +298,13 @@ pub fn close(
             start -= 1;
         }
         let run = &seq[start..end];
+        if run.is_empty() {
+            return refuse(format!(
+                "no order with an internal reflection reached the probe (the deepest traced \
+                 sequence has {len} event(s)): the path solver did not land the orders through \
+                 the film here"
+            ));
+        }
         if run.len() < 2
             || end == len
             || run.windows(2).any(|w| w[0].surface == w[1].surface)
@@ -424,7 +432,7 @@ pub fn close(
                     .path
                     .denser_reflections
                     .saturating_sub(p.path.denser_reflections),
-                traced_orders: (run.len() + 1) / 2,
+                traced_orders: run.len().div_ceil(2),
             };
             let mut a = (*d).clone();
             a.tail = Some(Arc::new(closure));
