@@ -8,6 +8,7 @@ mod support;
 
 mod accumulate;
 mod beats;
+mod beyond_critical;
 mod case_library;
 mod case_parser_props;
 mod cli;
