@@ -9,6 +9,7 @@ mod support;
 mod accumulate;
 mod airy_tail;
 mod beats;
+mod beyond_critical;
 mod case_library;
 mod case_parser_props;
 mod cli;

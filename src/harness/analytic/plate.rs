@@ -161,6 +161,17 @@ pub struct AiryTerms {
     pub evanescent: bool,
     /// κ = (2π/λ) n2 |cos θ2| (1/m) of the evanescent wave; 0 for a propagating one.
     pub kappa_per_m: f64,
+    /// The admittances a_k = n_k cos θk (s) or cos θk/n_k (p) of the three media, so that
+    /// r_jk = (a_j − a_k)/(a_j + a_k) (P1, P3).
+    pub admittance: [Complex64; 3],
+    /// a1 − a3, from (a1² − a3²)/(a1 + a3) with the squares in double-double where both are
+    /// real (no cancellation when a1 ≈ a3).
+    pub a1_minus_a3: Complex64,
+    /// e^{iβ} − 1, without cancellation: 2i sin(β/2) e^{iβ/2}, or expm1(−2κd) when evanescent.
+    pub round_trip_minus_1: Complex64,
+    /// a2/cos θ2 and β/cos θ2: the limit of the sum exactly at the critical angle of face 1,
+    /// where a2 = 0 and e^{iβ} − 1 = 0 (both O(cos θ2)).
+    pub per_cos2: (f64, f64),
 }
 
 impl Film {
@@ -211,19 +222,43 @@ impl Film {
         // β/2π in double-double: 2 n2 d cos θ2/λ without rounding; whole cycles removed
         // before the phasor. Evanescent: e^{iβ} = e^{−2π·2 n2 d |cos θ2|/λ}, real and < 1.
         let optical = cos2_dd * TwoFloat::new_mul(2.0 * self.n2, self.thickness_m);
-        let (round_trip, half_trip, beta) = if evanescent {
+        let (round_trip, half_trip, beta, round_trip_minus_1) = if evanescent {
             let decay = f64::from(optical) * std::f64::consts::TAU / lambda_m;
             (
                 Complex64::from((-decay).exp()),
                 Complex64::from((-0.5 * decay).exp()),
                 0.0,
+                Complex64::from((-decay).exp_m1()),
             )
         } else {
+            let half = precise::path_phasor(optical * 0.5, lambda_m);
             (
                 precise::path_phasor(optical, lambda_m),
-                precise::path_phasor(optical * 0.5, lambda_m),
+                half,
                 4.0 * std::f64::consts::PI * self.n2 * self.thickness_m * cos2 / lambda_m,
+                Complex64::new(0.0, 2.0 * half.im) * half,
             )
+        };
+        let adm = |n: f64, c: Complex64| match pol {
+            Pol::S => c * n,
+            Pol::P => c / n,
+        };
+        let admittance = [adm(self.n1, c1), adm(self.n2, c2), adm(self.n3, c3)];
+        let a1_minus_a3 = if c3.im == 0.0 {
+            // a1² − a3² in double-double: n1² cos²θ1 − n3² cos²θ3 (s), cos²θ1/n1² − cos²θ3/n3² (p).
+            let sq = |n: f64, c_sq: TwoFloat| match pol {
+                Pol::S => c_sq * TwoFloat::new_mul(n, n),
+                Pol::P => precise::div(c_sq, TwoFloat::new_mul(n, n)),
+            };
+            let diff = sq(self.n1, inc.cos_sq) - sq(self.n3, c3sq);
+            let sum = admittance[0] + admittance[2];
+            if sum.re > 0.0 {
+                Complex64::from(f64::from(diff) / sum.re)
+            } else {
+                admittance[0] - admittance[2]
+            }
+        } else {
+            admittance[0] - admittance[2]
         };
         AiryTerms {
             r12,
@@ -243,6 +278,16 @@ impl Film {
             } else {
                 0.0
             },
+            admittance,
+            a1_minus_a3,
+            round_trip_minus_1,
+            per_cos2: (
+                match pol {
+                    Pol::S => self.n2,
+                    Pol::P => 1.0 / self.n2,
+                },
+                4.0 * std::f64::consts::PI * self.n2 * self.thickness_m / lambda_m,
+            ),
         }
     }
 
@@ -254,14 +299,55 @@ impl Film {
     /// (found by the 50-digit test, `tests/suite/closed_form_precision.rs`).
     pub fn r(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> Complex64 {
         let a = self.terms(incidence, lambda_m, pol);
-        let e = a.round_trip;
-        (a.r12 + a.r23 * e) / (1.0 + a.r12 * a.r23 * e)
+        let (num, den) = Self::numerator_denominator(&a);
+        num / den
     }
 
-    /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}), with r21 = −r12.
+    /// (r12 + r23 e^{iβ})(a1 + a2)(a2 + a3) and (1 + r12 r23 e^{iβ})(a1 + a2)(a2 + a3) in the
+    /// admittances a_k ([`AiryTerms::admittance`]), expanded about e^{iβ} = 1:
+    /// 2 a2 (a1 − a3) + (a2 − a3)(a1 + a2)(e^{iβ} − 1) and
+    /// 2 a2 (a1 + a3) + (a1 − a2)(a2 − a3)(e^{iβ} − 1). Near the critical angle of face 1
+    /// (a2 → 0, r12 → 1, r23 → −1) the factored form r = (r12 + r23 e)/(1 + r12 r23 e) is a ratio
+    /// of two differences of O(1) terms and lost ~1e-16/|cos θ2| of R (1.5e-12 at 1e-8 from the
+    /// critical angle, `tests/suite/beyond_critical.rs`); these forms have no cancellation.
+    fn numerator_denominator(a: &AiryTerms) -> (Complex64, Complex64) {
+        let [a1, a2, a3] = a.admittance;
+        if a2 == Complex64::from(0.0) {
+            // Exactly at the critical angle: both forms divided by cos θ2 → 0.
+            let (k, b) = a.per_cos2;
+            let ib = Complex64::new(0.0, b);
+            return (
+                a.a1_minus_a3 * 2.0 * k - a3 * a1 * ib,
+                (a1 + a3) * 2.0 * k - a1 * a3 * ib,
+            );
+        }
+        let em1 = a.round_trip_minus_1;
+        let num = a2 * a.a1_minus_a3 * 2.0 + (a2 - a3) * (a1 + a2) * em1;
+        let den = a2 * (a1 + a3) * 2.0 + (a1 - a2) * (a2 - a3) * em1;
+        (num, den)
+    }
+
+    /// Airy transmission amplitude t = t12 t23 e^{iβ/2}/(1 − r21 r23 e^{iβ}), with r21 = −r12,
+    /// as 4 a1 a2 e^{iβ/2} (n1/n3 for p)/(2 a2 (a1 + a3) + (a1 − a2)(a2 − a3)(e^{iβ} − 1)).
     pub fn t(&self, incidence: impl Into<Incidence>, lambda_m: f64, pol: Pol) -> Complex64 {
         let a = self.terms(incidence, lambda_m, pol);
-        a.t12 * a.t23 * a.half_trip / (1.0 + a.r12 * a.r23 * a.round_trip)
+        Self::t_of(&a, self.n1 / self.n3, pol)
+    }
+
+    fn t_of(a: &AiryTerms, n1_over_n3: f64, pol: Pol) -> Complex64 {
+        let [a1, a2, _] = a.admittance;
+        let (_, den) = Self::numerator_denominator(a);
+        // Exactly at the critical angle the denominator is divided by cos θ2: so is a2.
+        let a2 = if a2 == Complex64::from(0.0) {
+            Complex64::from(a.per_cos2.0)
+        } else {
+            a2
+        };
+        let scale = match pol {
+            Pol::S => 4.0,
+            Pol::P => 4.0 * n1_over_n3,
+        };
+        a1 * a2 * a.half_trip * scale / den
     }
 
     /// Reflectance R = |r|².
@@ -275,7 +361,7 @@ impl Film {
         if a.cos3 == 0.0 {
             return 0.0;
         }
-        let t = a.t12 * a.t23 * a.half_trip / (1.0 + a.r12 * a.r23 * a.round_trip);
+        let t = Self::t_of(&a, self.n1 / self.n3, pol);
         self.n3 * a.cos3 / (self.n1 * a.cos1) * t.norm_sqr()
     }
 
@@ -304,9 +390,10 @@ impl Film {
             let e = a.round_trip;
             // r − r12 = r23 e (1 − r12²)/(1 + r12 r23 e): no cancellation.
             let dr = a.r23 * e * (1.0 - a.r12) * (1.0 + a.r12) / (1.0 + a.r12 * a.r23 * e);
-            let r = a.r12 + dr;
             out.amplitude = out.amplitude.max(dr.norm());
-            out.reflectance = out.reflectance.max((r.norm_sqr() - a.r12.norm_sqr()).abs());
+            out.reflectance = out
+                .reflectance
+                .max((self.reflectance(inc, lambda_m, pol) - a.r12.norm_sqr()).abs());
             out.transmittance = out
                 .transmittance
                 .max(self.transmittance(inc, lambda_m, pol));
@@ -484,7 +571,15 @@ impl TwoBeamPlate {
         // One Newton step puts the entry point where f64 cannot: near grazing the amplitudes
         // depend on it to first order (cos θ = h_s/L1 is small), the optical path does not.
         let a = {
-            let h = 1e-7 * a0.max(hs);
+            // The step stays on the near side of the critical entry offset
+            // a_c = n2 h_s/sqrt(n1² − n2²) of an ambient denser than the plate, where the ray
+            // would no longer enter (beyond it the landing offset is NaN).
+            let room = if n1 > n2 {
+                n2 * hs / (n1 * n1 - n2 * n2).sqrt() - a0
+            } else {
+                f64::INFINITY
+            };
+            let h = (1e-7 * a0.max(hs)).min(0.5 * room);
             let slope = (lateral(a0 + h) - lateral(a0 - h)) / (2.0 * h);
             let a0 = TwoFloat::from(a0);
             let miss = offset(a0).2 + a0 * (ho / hs) - x_m;
