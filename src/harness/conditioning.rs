@@ -15,7 +15,17 @@
 //!   finite-difference Jacobian (step h = 1e-6 of the launch parameters, residuals of f64
 //!   coordinates of size X at distance ℓ, each rounded by u X) adds u X/(h ℓ) of |E_k| (half
 //!   the relative error of S² = 1/det J, whose entries are differences of two residuals);
-//! * the sum: adding n_g fields rounds by u n_g Σ_k |E_k|.
+//! * the sum: adding n_g fields rounds by u n_g Σ_k |E_k|;
+//! * the event points: every hit point is an f64 point, off the exact path along its plane by a
+//!   rounding of its coordinates, u X (X the largest coordinate of the path). The optical path
+//!   does not feel it to first order (Fermat; the offset across the plane is corrected,
+//!   `Plane::off_plane_path_correction`), but the launch that lands the path on its target
+//!   from such a point tilts by up to u X/ℓ (ℓ the path's length), and with it every incidence
+//!   cosine: each event's Fresnel coefficient moves by κ_e C u X/ℓ relative, κ_e = |∂coef/∂cos θ|
+//!   / |coef| of that event ([`fresnel_sensitivity`]). A 1 µm Lloyd source 100 m from the
+//!   origin, 1 cm from its screen, has u X/ℓ = 1.1e-12 (the tracer's incidence cosine was
+//!   6.7e-12 off, `fringe fuzz --family lloyd --seed 1`, scene 218): no f64 hit point does
+//!   better, and a scene near the origin has X ≤ ℓ.
 //!
 //! With δE_g = Σ_k |E_k| δφ_k + δa_k + u n_g Σ_k |E_k|, |δI_g| ≤ 2|E_g| δE_g + δE_g², and the
 //! bound is Σ_g of that (plus u I for the final sum). C = 8 covers the handful of roundings
@@ -25,8 +35,13 @@
 use crate::accumulate::fidelity::Fidelity;
 use crate::accumulate::phasor_from_cycles;
 use crate::optics::double_double::DoubleDouble;
+use crate::optics::fresnel;
+use crate::optics::interaction::{SurfaceOptics, indices_for};
 use crate::optics::ray::INCOHERENT;
+use crate::scene::{Scene, SceneOptics};
+use crate::trace::path::EventKind;
 use crate::trace::{self, Arrival};
+use glam::DVec3;
 use num_complex::Complex64;
 use std::collections::BTreeMap;
 
@@ -40,10 +55,58 @@ pub const ROUNDINGS: f64 = 8.0;
 /// step for point sources, radians).
 const SPREADING_STEP: f64 = 1e-6;
 
+/// κ = |∂coef/∂cos θi| / |coef| of the Fresnel coefficients (s and p, the larger of each) that
+/// event `kind` at a surface of `optics` with unit `normal` applies to a ray along `d_in` in
+/// index `n_in` (module docs, "the event points"): a central difference of ±1e-6 in cos θi
+/// (one-sided at 0 and 1), so at a critical angle it is large but finite. 0 for an ideal mirror
+/// or splitter, whose coefficients do not depend on the angle, and between equal indices.
+pub fn fresnel_sensitivity(
+    optics: SurfaceOptics,
+    kind: EventKind,
+    normal: DVec3,
+    d_in: DVec3,
+    n_in: f64,
+) -> f64 {
+    let SurfaceOptics::Dielectric { .. } = optics else {
+        return 0.0;
+    };
+    let (n1, n2) = indices_for(optics, normal, d_in, n_in);
+    if n1 == n2 {
+        return 0.0;
+    }
+    let coefficients = |c: f64| {
+        let f = fresnel::fresnel(n1, n2, c);
+        match kind {
+            EventKind::Reflect => [f.r_s, f.r_p],
+            EventKind::Refract => [f.t_s, f.t_p],
+        }
+    };
+    let c = (d_in.dot(normal).abs() / d_in.length()).min(1.0);
+    const STEP: f64 = 1e-6;
+    let (lo, hi) = ((c - STEP).max(0.0), (c + STEP).min(1.0));
+    let size = coefficients(c).iter().fold(0.0f64, |m, z| m.max(z.norm()));
+    if size == 0.0 || hi <= lo {
+        return 0.0;
+    }
+    let (a, b) = (coefficients(lo), coefficients(hi));
+    let slope = a
+        .iter()
+        .zip(b)
+        .fold(0.0f64, |m, (x, y)| m.max((y - x).norm()));
+    slope / (hi - lo) / size
+}
+
 /// The bound (module docs) on the rounding error of the `vector` intensity of `arrivals` at
 /// vacuum wavelength `lambda_m`, phases referred to the optical path `reference` (the first
-/// arrival's, as the traced value refers them), in the units of the traced |E|².
-pub fn intensity_rounding(arrivals: &[Arrival], reference: DoubleDouble, lambda_m: f64) -> f64 {
+/// arrival's, as the traced value refers them), in the units of the traced |E|². `scene` and
+/// `optics` are the ones traced (the surfaces the events name).
+pub fn intensity_rounding(
+    arrivals: &[Arrival],
+    reference: DoubleDouble,
+    lambda_m: f64,
+    scene: &Scene,
+    optics: &SceneOptics,
+) -> f64 {
     let cu = ROUNDINGS * UNIT_ROUNDOFF;
     // Per coherence group: (Σ E_k e^{iφ}, Σ|E_k|, Σ|E_k|(δφ_k + δa_k), n).
     let mut groups: BTreeMap<u64, ([Complex64; 3], f64, f64, usize)> = BTreeMap::new();
@@ -54,20 +117,20 @@ pub fn intensity_rounding(arrivals: &[Arrival], reference: DoubleDouble, lambda_
         let ds = (a.vector.optical_path - reference).to_f64().abs();
         let dphi = std::f64::consts::TAU * cu * (ds / lambda_m + 1.0);
         let mut da = cu * (a.path.sequence.len() as f64 + 1.0);
+        let x = a
+            .path
+            .points
+            .iter()
+            .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+        let ell: f64 = a
+            .path
+            .points
+            .iter()
+            .zip(a.path.points.iter().skip(1))
+            .map(|(p, q)| (*q - *p).length())
+            .sum::<f64>()
+            .max(f64::MIN_POSITIVE);
         if a.path.spreading != 1.0 {
-            let x = a
-                .path
-                .points
-                .iter()
-                .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
-            let ell: f64 = a
-                .path
-                .points
-                .iter()
-                .zip(a.path.points.iter().skip(1))
-                .map(|(p, q)| (*q - *p).length())
-                .sum::<f64>()
-                .max(f64::MIN_POSITIVE);
             let end = a.vector.origin.abs().max_element();
             da += UNIT_ROUNDOFF * x.max(end) / (SPREADING_STEP * ell);
         }
@@ -75,6 +138,19 @@ pub fn intensity_rounding(arrivals: &[Arrival], reference: DoubleDouble, lambda_
         // 1/|1 − q| more sensitive to the round trip's phase and amplitude than one order.
         if let Some(t) = &a.tail {
             da += t.field(&a.vector.field(), Fidelity::Vector, lambda_m).1;
+        }
+        // The event points' rounding tilts every incidence cosine by up to C u X/ℓ.
+        let tilt = cu * x / ell;
+        for (i, ev) in a.path.sequence.iter().enumerate() {
+            let (Some(so), Some(d_in), Some(&n_in)) = (
+                optics.surfaces.get(ev.surface).copied().flatten(),
+                a.path.dirs.get(i),
+                a.path.indices.get(i),
+            ) else {
+                continue;
+            };
+            let normal = scene.surfaces[ev.surface].plane.normal;
+            da += tilt * fresnel_sensitivity(so, ev.kind, normal, *d_in, n_in);
         }
         let term = e * (dphi + da);
         if c.coherence_id == INCOHERENT {

@@ -41,6 +41,7 @@ mod tradeoff;
 mod trail;
 mod truth;
 mod truth_geometry;
+mod truth_grazing;
 mod truth_plates;
 mod unpolarized;
 mod young_two_point;

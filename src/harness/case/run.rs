@@ -787,9 +787,16 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             acc.extend(&contributions);
             *out.intensity.get_mut(l).unwrap() += w * factor * acc.intensity();
         }
-        if let Some(r) = reference {
-            out.rounding +=
-                w * factor * crate::harness::conditioning::intensity_rounding(&arr, r, lambda);
+        if let (Some(r), Ok(optics)) = (reference, built.scene.optics(lambda)) {
+            out.rounding += w
+                * factor
+                * crate::harness::conditioning::intensity_rounding(
+                    &arr,
+                    r,
+                    lambda,
+                    &built.scene,
+                    &optics,
+                );
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity
