@@ -515,16 +515,12 @@ fn probe_targets(target: &Target) -> Vec<DVec3> {
 }
 
 /// The paths a case's references model that exist in every scene the reference accepts, so a
-/// solver that does not land one has lost a beam: for `two_beam_plate`, the top reflection and,
-/// over a plate at least as dense as its ambient, the beam through the plate (Snell's invariant
-/// has its root at any lateral distance). Over a plate thinner than its ambient the reference
-/// refuses the scenes beyond the critical angle itself (frustrated total reflection), with its
-/// own reason.
+/// solver that does not land one has lost a beam: for `two_beam_plate`, the top reflection and
+/// the beam through the plate (Snell's invariant has its root at any lateral distance; over a
+/// plate thinner than its ambient, beyond the top face's critical angle, the beam enters below
+/// it nearer the source and runs grazing inside: docs/PHYSICS.md §5).
 fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace::path::Event>> {
-    use crate::scene::SurfaceKind;
     use crate::trace::path::Event;
-    let spectrum = build::spectrum(&case.spec.light, &Overrides::default());
-    let lambda_m = spectrum[spectrum.len() / 2].0;
     let mut out = Vec::new();
     for r in &case.spec.references {
         if let ReferenceModel::TwoBeamPlate { plate } = &r.model
@@ -535,15 +531,6 @@ fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace::path::Eve
         {
             let ev = |surface, kind| Event { surface, kind };
             out.push(vec![ev(top, EventKind::Reflect)]);
-            let SurfaceKind::Interface { front, back, .. } = &built.scene.surfaces[top].kind else {
-                continue;
-            };
-            let (Ok(n_above), Ok(n_plate)) = (front.index(lambda_m), back.index(lambda_m)) else {
-                continue;
-            };
-            if n_plate < n_above {
-                continue;
-            }
             out.push(vec![
                 ev(top, EventKind::Refract),
                 ev(bottom, EventKind::Reflect),
