@@ -1,5 +1,5 @@
 //! `fringe check`: resolve case names, run them, compare with closed forms and golden files,
-//! run the stability sweep (`src/harness/stability.rs`, on every run: it is cheap and checks the tracer
+//! run the stability sweep (`src/harness/stability/`, on every run: it is cheap and checks the tracer
 //! every case relies on), write reports atomically, and decide the exit code (0 pass, 1 a case
 //! or a stability check failed, 2 bad input).
 

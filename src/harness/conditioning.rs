@@ -139,8 +139,14 @@ pub fn intensity_rounding(
         if let Some(t) = &a.tail {
             da += t.field(&a.vector.field(), Fidelity::Vector, lambda_m).1;
         }
-        // The event points' rounding tilts every incidence cosine by up to C u X/ℓ.
-        let tilt = cu * x / ell;
+        // The event points' rounding tilts every incidence cosine by up to C u X/ℓ where the
+        // directions are solved through the points (point and line sources); a plane wave's
+        // directions follow from its own direction and Snell's law, whatever the points.
+        let plane_wave = matches!(
+            scene.sources.get(a.source).map(|s| &s.emitter),
+            Some(crate::scene::source::Emitter::PlaneWave { .. })
+        );
+        let tilt = if plane_wave { 0.0 } else { cu * x / ell };
         for (i, ev) in a.path.sequence.iter().enumerate() {
             let (Some(so), Some(d_in), Some(&n_in)) = (
                 optics.surfaces.get(ev.surface).copied().flatten(),
