@@ -107,6 +107,7 @@ fn r_p_tangent(n1: f64, n2: f64, theta: f64) -> f64 {
     (theta - t).tan() / (theta + t).tan()
 }
 
+/// Normal, 1e-12 rad, Brewster ± 1e-12, 89.9999° and exactly grazing, air → glass 1.5.
 pub(super) fn incidence_rows(rows: &mut Vec<StabilityRow>) {
     use DeviationKind::*;
     let g = "incidence";

@@ -269,8 +269,6 @@ fn pol_name(pol: Pol) -> &'static str {
     }
 }
 
-/// Normal, 1e-12 rad, Brewster ± 1e-12, 89.9999° and exactly grazing, air → glass 1.5.
-
 /// Run the whole sweep.
 pub fn sweep() -> Sweep {
     sweep_with(PathArithmetic::DoubleDouble)
