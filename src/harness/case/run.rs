@@ -515,11 +515,9 @@ fn probe_targets(target: &Target) -> Vec<DVec3> {
 }
 
 /// The paths a case's references model that exist in every scene the reference accepts, so a
-/// solver that does not land one has lost a beam: for `two_beam_plate`, the top reflection and,
-/// over a plate at least as dense as its ambient, the beam through the plate (Snell's invariant
-/// has its root at any lateral distance). Over a plate thinner than its ambient the reference
-/// refuses the scenes beyond the critical angle itself (frustrated total reflection), with its
-/// own reason.
+/// solver that does not land one has lost a beam: for `two_beam_plate`, the top reflection and
+/// the beam through the plate (Snell's invariant has its root at any lateral distance, also over
+/// a plate rarer than its ambient, where the beam enters below the critical angle).
 fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace::path::Event>> {
     use crate::scene::SurfaceKind;
     use crate::trace::path::Event;
@@ -538,10 +536,12 @@ fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace::path::Eve
             let SurfaceKind::Interface { front, back, .. } = &built.scene.surfaces[top].kind else {
                 continue;
             };
-            let (Ok(n_above), Ok(n_plate)) = (front.index(lambda_m), back.index(lambda_m)) else {
-                continue;
-            };
-            if n_plate < n_above {
+            // Over a plate rarer than its ambient the beam through the plate exists too: it
+            // enters below the critical angle and, beyond it, runs grazing inside the plate
+            // (lateral offset 2d tan θt → ∞ as the entry nears the critical angle). Skipping it
+            // here let a tracer that lost it report the top beam alone (`fringe fuzz --family
+            // two_beam_plate --seed 1`, scene 122: 1.0 against 1.0449 at 50 digits).
+            if front.index(lambda_m).is_err() || back.index(lambda_m).is_err() {
                 continue;
             }
             out.push(vec![
@@ -555,8 +555,8 @@ fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace::path::Eve
 }
 
 /// All arrivals at a target that the observer records, or why a path that exists could not be
-/// traced: a path of [`required_paths`] whose solver stopped short of the target
-/// ([`PathError::NotConverged`]) is a beam the tracer failed to find, and dropping it would lose
+/// traced: a path of [`required_paths`] whose solver fails for any reason but an obstruction
+/// (`Blocked`, `OutOfExtent`: a scene that shields a beam) is a beam the tracer failed to find, and dropping it would lose
 /// it silently (a two-beam plate lost its second beam so and was 0.25 off,
 /// `tests/suite/truth_plates.rs`); the case is refused with that reason instead. (Other
 /// sequences that do not converge are, as before, taken as paths that do not exist.)
@@ -571,8 +571,10 @@ fn arrivals_at(
     let plan = trace::plan(&built.scene, optics, &probe_targets(target), &st.limits);
     let (mut arr, failed) = trace::arrivals(&built.scene, optics, &plan, target, st);
     if let Some(f) = failed.iter().find(|f| {
-        matches!(f.error, PathError::NotConverged { .. })
-            && required.iter().any(|q| f.sequence.iter().eq(q.iter()))
+        !matches!(
+            f.error,
+            PathError::Blocked { .. } | PathError::OutOfExtent { .. }
+        ) && required.iter().any(|q| f.sequence.iter().eq(q.iter()))
     }) {
         return Err(format!(
             "the path solver could not land the path {} on a probe point ({}): f64 ray \
