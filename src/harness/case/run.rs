@@ -542,8 +542,8 @@ fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace::path::Eve
 }
 
 /// All arrivals at a target that the observer records, or why a path that exists could not be
-/// traced: a path of [`required_paths`] whose solver stopped short of the target
-/// ([`PathError::NotConverged`]) is a beam the tracer failed to find, and dropping it would lose
+/// traced: a path of [`required_paths`] whose solver fails for any reason but an obstruction
+/// (`Blocked`, `OutOfExtent`: a scene that shields a beam) is a beam the tracer failed to find, and dropping it would lose
 /// it silently (a two-beam plate lost its second beam so and was 0.25 off,
 /// `tests/suite/truth_plates.rs`); the case is refused with that reason instead. (Other
 /// sequences that do not converge are, as before, taken as paths that do not exist.)
@@ -558,8 +558,10 @@ fn arrivals_at(
     let plan = trace::plan(&built.scene, optics, &probe_targets(target), &st.limits);
     let (mut arr, failed) = trace::arrivals(&built.scene, optics, &plan, target, st);
     if let Some(f) = failed.iter().find(|f| {
-        matches!(f.error, PathError::NotConverged { .. })
-            && required.iter().any(|q| f.sequence.iter().eq(q.iter()))
+        !matches!(
+            f.error,
+            PathError::Blocked { .. } | PathError::OutOfExtent { .. }
+        ) && required.iter().any(|q| f.sequence.iter().eq(q.iter()))
     }) {
         return Err(format!(
             "the path solver could not land the path {} on a probe point ({}): f64 ray \
@@ -699,7 +701,26 @@ pub(super) fn trace_point(
                     &st,
                     &required_paths(case, &built),
                 )
-                .map_err(|e| case_err(case, "$.probe", e))?;
+                .map_err(|e| {
+                    // A reference that refuses this point itself (frustrated total reflection,
+                    // an unresolvable grazing entry) names the scene's own limit: its reason wins.
+                    let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
+                        matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
+                            .then(|| {
+                                reference::value(
+                                    &r.model,
+                                    &built,
+                                    &target,
+                                    lambda_m,
+                                    spec.trace.spreading,
+                                )
+                                .err()
+                            })
+                            .flatten()
+                            .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
+                    });
+                    refused.unwrap_or_else(|| case_err(case, "$.probe", e))
+                })?;
                 // Beyond the cap: the orders past the traced ones, closed exactly.
                 if b.closed {
                     trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
