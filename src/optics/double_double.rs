@@ -238,16 +238,28 @@ pub fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
     fast_two_sum(t.hi, t.lo + s.lo + xl + yl + zl).sqrt()
 }
 
-/// d·(x − reference) in double-double for the f64 vectors `d` (unit, a ray direction), `x`
+/// d·(x − reference)/|d| in double-double for the f64 vectors `d` (a ray direction), `x`
 /// and `reference`: the signed distance of `x` ahead of the plane through `reference`
 /// perpendicular to `d` — the far-field wavefront projection (times −n it is the optical path
 /// from `x` to the wavefront through `reference`, docs/PHYSICS.md §5 Airy: equal paths to the lens
 /// focus), and the phase of a plane wave at `x` (times n). The differences are exact and the
 /// products and sum double-double, so a reference 100 m away costs nothing.
+///
+/// The division by |d| (in double-double) matters: an f64 "unit" vector is unit only to
+/// ~1e-16, and a plate near its critical angle walks the exit points of successive Airy orders
+/// 0.26 m apart, so the projection through an unnormalized d was off by ~1e-17 m per round trip
+/// of ΔS = 3.7e-11 m, 4e-7 of the round-trip phase (fuzz `airy` seed 1 scene 114: T 8.8e-7 off
+/// 50 digits; docs/PHYSICS.md §8).
 #[inline]
 pub fn projection(d: DVec3, x: DVec3, reference: DVec3) -> DoubleDouble {
     let [dx, dy, dz] = difference(reference, x);
-    dx * d.x + dy * d.y + dz * d.z
+    let p = dx * d.x + dy * d.y + dz * d.z;
+    let norm2 = DoubleDouble::dot(d, d);
+    if norm2.hi == 1.0 && norm2.lo == 0.0 {
+        p
+    } else {
+        p / norm2.sqrt()
+    }
 }
 
 #[cfg(test)]

@@ -40,6 +40,7 @@ mod stability_report;
 mod tradeoff;
 mod trail;
 mod truth;
+mod truth_airy_tracer;
 mod truth_beyond_critical_plates;
 mod truth_geometry;
 mod truth_grazing;

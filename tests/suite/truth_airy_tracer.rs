@@ -1,0 +1,110 @@
+//! Airy scenes where the tracer, not the closed form, was wrong (issue #12; found by
+//! `fringe fuzz --family airy --count 300 --seed 1`, scenes 114, 159, 175, 291, shrunk into
+//! `tests/fuzz_found/fuzz_airy_s1_*.json`). Each is traced and compared, point by point, with a
+//! 50-digit evaluation of the same binary64 numbers (`tools/airy_tracer_mpmath.py` →
+//! `tests/data/airy_tracer_mpmath.csv`), not with the closed form the gate uses (which is
+//! within 3e-14 of those values on every point).
+//!
+//! The cause: the far-field wavefront projection d·(x − reference) (`double_double::projection`)
+//! took the f64 direction d as unit; it is unit only to ~1e-16. Near the critical angle of a
+//! film's top face (n 2.6 → 2.4, cos θ2 = 7.6e-6) successive orders leave the film 0.26 m
+//! apart, so each round trip's optical path ΔS = 3.7e-11 m was ~1.6e-17 m off (4e-7 of it) and
+//! T 8.8e-7 off (#114); the metre-long plates of #159 and #291 lost 1e-8 the same way.
+
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::case::load;
+use fringe::harness::case::run;
+use fringe::optics::double_double::projection;
+use glam::DVec3;
+use std::collections::BTreeMap;
+use std::path::{Path, PathBuf};
+
+fn root() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+}
+
+/// The 50-digit values by case name, in probe order.
+fn mpmath_values() -> BTreeMap<String, Vec<f64>> {
+    let text = std::fs::read_to_string(root().join("tests/data/airy_tracer_mpmath.csv")).unwrap();
+    let mut out: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let v = out.entry(f[0].to_string()).or_default();
+        assert_eq!(f[1].parse::<usize>().unwrap(), v.len(), "{line}");
+        v.push(f[2].parse().unwrap());
+    }
+    out
+}
+
+fn run_file(path: &Path) -> run::CaseResult {
+    let text = std::fs::read_to_string(path).unwrap();
+    run::run_with(&load::parse(path, &text).expect("a valid case"), false).unwrap()
+}
+
+/// Largest deviation of the traced `vector` values of `name` from the 50-digit ones, relative
+/// to the largest 50-digit value of the profile (as the gate measures).
+fn traced_error(name: &str, truth: &[f64]) -> f64 {
+    let r = run_file(&root().join(format!("tests/fuzz_found/{name}.json")));
+    let traced = &r.metrics[0].traced[&Fidelity::Vector];
+    assert_eq!(traced.len(), truth.len(), "{name}: probe points");
+    let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
+    traced
+        .iter()
+        .zip(truth)
+        .map(|(t, m)| (t - m).abs() / scale)
+        .fold(0.0, f64::max)
+}
+
+fn check(name: &str, bound: f64) {
+    let truth = mpmath_values();
+    let e = traced_error(name, &truth[name]);
+    println!("{name}: traced vs 50 digits {e:.3e}");
+    assert!(e <= bound, "{name}: traced vs 50 digits {e:e} > {bound:e}");
+}
+
+/// #114: n 2.6 → 2.4 → 2.6, 1 µm, 200 nm, 67.38° (cos θ2 = 7.6e-6 inside), transmitted; the
+/// tail closure sums ~5e5 orders from ΔS of two traced ones. Was 8.8e-7 off.
+#[test]
+fn a_film_near_its_critical_angle_keeps_its_round_trip_path() {
+    check("fuzz_airy_s1_114", 1e-12);
+}
+
+/// #175: air → n = 0.085 → air, rotated plate, reflected near the critical angle. Was 1.0e-9;
+/// still 1.1e-9 after the projection fix (another cause, not found yet).
+#[test]
+#[ignore = "open (issue #12): traced 1.1e-9 off 50 digits, cause not found"]
+fn a_rotated_low_index_film_near_critical_reflects_as_50_digits() {
+    check("fuzz_airy_s1_175", 1e-12);
+}
+
+/// #159 (1 m plate, n 10 → 1.5, 200 nm, transmitted, 0–10°) and #291 (0.18 m plate,
+/// n 3.42 → 1.5, 1300 nm, reflected near Brewster): 1.5e7 and 4e5 cycles of round trip,
+/// whose exit points walk metres; were 7.9e-9 and 1.4e-8 off; #159 is 1.7e-10 off after the
+/// projection fix (a further cause remains).
+#[test]
+#[ignore = "open (issue #12): #159 traced 1.7e-10 off 50 digits after the projection fix"]
+fn thick_plates_keep_the_phase_of_their_walking_orders() {
+    check("fuzz_airy_s1_159", 1e-12);
+    check("fuzz_airy_s1_291", 1e-12);
+}
+
+/// The wavefront projection is the signed distance from the plane through `reference`
+/// perpendicular to d, whatever |d| (an f64 "unit" vector is unit only to ~1e-16): the same
+/// direction scaled exactly (by powers of two) gives the same distance, to double-double
+/// rounding; the distance of a point one metre ahead along d/|d| is one metre.
+#[test]
+fn the_wavefront_projection_does_not_depend_on_the_length_of_d() {
+    let d = DVec3::new(0.9230769230501988, 0.0, -0.3846153846795227);
+    let x = DVec3::new(0.39425141670001235, 0.0, -1e-6);
+    let r = DVec3::new(0.0, 0.0, 1.0);
+    let unit = projection(d, x, r);
+    for s in [2.0, 0.5, 1024.0, 2f64.powi(-20)] {
+        let scaled = projection(d * s, x, r);
+        let e = (scaled - unit).to_f64().abs();
+        assert!(e <= 1e-30, "|d| scaled by {s}: {e:e}");
+    }
+    // A point exactly 2⁻³ m from `r` along the axis (0, 0, 1): d = (0, 0, 1 + 2⁻⁵²) is not unit.
+    let long = DVec3::new(0.0, 0.0, 1.0 + f64::EPSILON);
+    let ahead = projection(long, DVec3::new(0.0, 0.0, 1.125), r);
+    assert!((ahead.to_f64() - 0.125).abs() <= 1e-30, "{ahead:?}");
+}
