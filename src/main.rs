@@ -749,7 +749,7 @@ fn render_command(
         .iter()
         .map(|f| fringe::output::render::parse_shading(f))
         .collect::<Result<Vec<_>, _>>()?;
-    // The options get the case file's caps (src/harness/case/load.rs `limits`).
+    // The options get the case file's caps (src/harness/case/load/mod.rs `limits`).
     use fringe::harness::case::load::limits::{MAX_SPECTRAL_SAMPLES, WAVELENGTH_NM};
     let white = match (samples, wavelengths_nm) {
         (Some(k), _) => {

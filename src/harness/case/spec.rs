@@ -25,7 +25,7 @@ pub type Vec3 = [f64; 3];
 #[serde(deny_unknown_fields)]
 #[schemars(
     title = "fringe case file",
-    description = "A case of the fringe verification harness, generated from src/harness/case/spec.rs by `fringe schema` (documented in cases/README.md). The loader (src/harness/case/load.rs) checks more than this schema can say: names that must exist, geometry, the sampled band, caps across keys."
+    description = "A case of the fringe verification harness, generated from src/harness/case/spec.rs by `fringe schema` (documented in cases/README.md). The loader (src/harness/case/load/) checks more than this schema can say: names that must exist, geometry, the sampled band, caps across keys."
 )]
 pub struct CaseFile {
     /// Case name, 1–64 characters from [a-z0-9_] (it names output files).
