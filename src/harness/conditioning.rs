@@ -147,7 +147,7 @@ pub fn intensity_rounding(
             Some(crate::scene::source::Emitter::PlaneWave { .. })
         );
         let tilt = if plane_wave { 0.0 } else { cu * x / ell };
-        for (i, ev) in a.path.sequence.iter().enumerate() {
+        for (i, ev) in a.path.sequence.iter().enumerate().filter(|_| tilt > 0.0) {
             let (Some(so), Some(d_in), Some(&n_in)) = (
                 optics.surfaces.get(ev.surface).copied().flatten(),
                 a.path.dirs.get(i),
