@@ -115,10 +115,15 @@ def coherence_case(case):
     return out
 
 
-print("case,point,value")
-for name in CASES:
-    case = json.load(open(os.path.join(FOUND, name + ".json")))
-    model = next(iter(case["references"][0]["model"]))
-    values = airy_case(case) if model == "airy" else coherence_case(case)
-    for i, v in enumerate(values):
-        print(f"{name},{i},{mp.nstr(v, 30)}")
+def main():
+    print("case,point,value")
+    for name in CASES:
+        case = json.load(open(os.path.join(FOUND, name + ".json")))
+        model = next(iter(case["references"][0]["model"]))
+        values = airy_case(case) if model == "airy" else coherence_case(case)
+        for i, v in enumerate(values):
+            print(f"{name},{i},{mp.nstr(v, 30)}")
+
+
+if __name__ == "__main__":
+    main()
