@@ -596,7 +596,7 @@ fn airy(
 }
 
 /// Whether a probe of the `airy` reference `model` sees a film beyond its top face's critical
-/// angle (frustrated total reflection with negligible coupling, [`airy`]): the transmitted
+/// angle (frustrated total reflection with negligible coupling, `airy`): the transmitted
 /// side is then dark by physics (T = 0 to [`FTIR_NEGLIGIBLE`]), not a misplaced probe.
 pub fn frustrated(model: &ReferenceModel, built: &Built, lambda_m: f64) -> bool {
     let ReferenceModel::Airy {

@@ -1,0 +1,269 @@
+//! The internal-reflection budget of a probe point (the Airy tail bound, or its exact closure
+//! beyond the cap) and the work preflight that refuses an over-budget case before any tracing.
+
+use super::*;
+
+/// Reflected orders traced explicitly where the Airy tail is closed instead of refused
+/// (`Budget::closed`): the closure (docs/PHYSICS.md §5a) needs two consecutive traced orders
+/// with at least one round trip; a few more keep the traced part what it is below the cap.
+pub const CLOSED_TAIL_ORDERS: usize = 8;
+
+/// The internal-reflection budget at a probe point.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) struct Budget {
+    /// Internal reflections traced per path.
+    pub(super) internal: usize,
+    /// The Airy tail beyond them is closed exactly ([`trace::tail::close`]) instead of bounded:
+    /// the tail bound needs more internal reflections than the cap.
+    pub(super) closed: bool,
+}
+
+/// The internal-reflection budget at a probe point.
+pub(super) fn internal_reflections(
+    case: &Case,
+    built: &Built,
+    lambda_m: f64,
+) -> Result<usize, CaseError> {
+    budget(case, built, lambda_m).map(|b| b.internal)
+}
+
+/// The budget at a probe point: `max_internal_reflections`, or the Airy tail rule: enough
+/// reflected orders that the tail bound is below `airy_tail_epsilon`; where that needs more
+/// internal reflections than the cap (near grazing incidence), [`CLOSED_TAIL_ORDERS`] orders
+/// with the tail beyond them closed exactly.
+pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget, CaseError> {
+    let spec = &case.spec;
+    let Some(eps) = spec.trace.airy_tail_epsilon else {
+        return Ok(Budget {
+            internal: spec.trace.max_internal_reflections,
+            closed: false,
+        });
+    };
+    let film = spec
+        .references
+        .iter()
+        .find_map(|r| match &r.model {
+            ReferenceModel::Airy { film, .. } => Some(film.clone()),
+            _ => None,
+        })
+        .ok_or_else(|| {
+            case_err(
+                case,
+                "$.trace.airy_tail_epsilon",
+                "needs an `airy` reference naming the film",
+            )
+        })?;
+    let (f, cos1) = reference::airy_film(built, &film, lambda_m)
+        .map_err(|e| case_err(case, "$.references", e))?;
+    let pols = [
+        crate::harness::analytic::plate::Pol::S,
+        crate::harness::analytic::plate::Pol::P,
+    ];
+    // The most orders the cap allows (2 N + 1 internal reflections); the bound decreases with
+    // N, so the bound needs more than the cap exactly when it is not met at N.
+    let cap = crate::harness::case::load::limits::MAX_INTERNAL_REFLECTIONS;
+    let most = (cap - 1) / 2;
+    if pols
+        .into_iter()
+        .any(|p| f.r_tail_bound(cos1, lambda_m, p, most) > eps)
+    {
+        return Ok(Budget {
+            internal: 2 * CLOSED_TAIL_ORDERS + 1,
+            closed: true,
+        });
+    }
+    let orders = pols
+        .into_iter()
+        .map(|p| f.orders_for_bound(cos1, lambda_m, p, eps))
+        .max()
+        .unwrap_or(1);
+    // The bound holds only if every order it asks for is traced: never cap silently.
+    Ok(Budget {
+        internal: 2 * orders + 1,
+        closed: false,
+    })
+}
+
+/// Work units (see [`preflight`]) a case may use before it is refused: about five minutes of
+/// tracing on the busy 2-core machine of this project, about one when it is idle (see
+/// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
+/// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
+/// 110 s measured) too; four (2.8e9) are refused.
+pub const MAX_PATH_EVENTS: f64 = 5.0e8;
+
+/// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
+/// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
+/// this project at a load of about 12 (six developers building); README "Limits" gives the
+/// runs and the command. Used only to state the estimate in time.
+pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+
+/// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
+/// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
+/// m = 2000 against stacked plates).
+const WALKED_NODE_UNITS: f64 = 20.0;
+
+/// The work of one probe point at one wavelength, counted on the sequence tree the tracer
+/// itself discovers there (`trace::plan`): every probe ray of discovery visits at most every
+/// node of the tree (one unit each), and the solver then traces every candidate sequence event
+/// by event (one unit per event), or, for a plane wave observed in the far field, every node
+/// of the tree once (the walk of shared beginnings, [`WALKED_NODE_UNITS`] per node). Returns (work, measured): `measured` is false when the tree grew so fast with
+/// the allowed depth that the work was extrapolated (polynomially from the last doubling of the
+/// depth, which under-counts an exponential growth) instead of enumerated, because it already
+/// exceeds `cap`.
+fn point_work(
+    case: &Case,
+    pt: &ProbePoint,
+    internal: usize,
+    cap: f64,
+) -> Result<(f64, bool), CaseError> {
+    let spec = &case.spec;
+    let built =
+        build::build_scene(&spec.scene, &pt.overrides).map_err(|e| case_err(case, "$.scene", e))?;
+    let spectrum = build::spectrum(&spec.light, &pt.overrides);
+    let lambda = spectrum[spectrum.len() / 2].0;
+    let optics = built
+        .scene
+        .optics(lambda)
+        .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+    let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
+        .map_err(|e| case_err(case, "$.probe", e))?
+    else {
+        return Ok((0.0, true)); // no transmitted wave: nothing is traced
+    };
+    let walked = !matches!(pt.observer, Observer::Point { .. })
+        && built
+            .scene
+            .sources
+            .iter()
+            .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
+    let probe = probe_targets(&target);
+    // trace::plan's probe rays per source: the probe points, each surface's plane point and the
+    // specular points of the probe on each plane.
+    let rays = (probe.len()
+        + built.scene.surfaces.len() * (1 + probe.len() * built.scene.sources.len()))
+        as f64;
+    let full = settings(case, &built, internal).limits;
+    let mut depth = full.max_events.min(8);
+    let mut previous: Option<f64> = None;
+    loop {
+        let limits = EnumerationLimits {
+            max_events: depth,
+            ..full
+        };
+        let plan = trace::plan(&built.scene, &optics, &probe, &limits);
+        let (mut nodes, mut events) = (0.0, 0.0);
+        for tree in &plan.sequences {
+            nodes += tree.nodes().len() as f64;
+            events += tree
+                .nodes()
+                .iter()
+                .filter(|n| n.candidate)
+                .map(|n| n.depth as f64)
+                .sum::<f64>();
+        }
+        let work = rays * nodes
+            + if walked {
+                WALKED_NODE_UNITS * nodes
+            } else {
+                events
+            };
+        if depth == full.max_events {
+            return Ok((work, true));
+        }
+        if let Some(w0) = previous {
+            let p = (work / w0).log2().max(0.0);
+            let predicted = work * (full.max_events as f64 / depth as f64).powf(p);
+            if predicted > cap {
+                return Ok((predicted, false));
+            }
+        }
+        previous = Some(work);
+        depth = (2 * depth).min(full.max_events);
+    }
+}
+
+/// The tracing work of a case, checked before anything runs, in work units (one unit: a probe
+/// ray of sequence discovery visiting one node of the sequence tree, or the solver tracing one
+/// surface event; about [`SECONDS_PER_WORK_UNIT`] each). The tree is enumerated as the tracer enumerates it, at the probe point with
+/// the largest internal-reflection budget (the Airy tail rule may raise it near grazing
+/// incidence up to the cap; beyond it the budget is [`CLOSED_TAIL_ORDERS`] orders and the
+/// closed tail, one arrival of O(1) work per channel, docs/PHYSICS.md §5a), so the count follows the surfaces: reflections between separate surfaces in
+/// the ambient medium are not internal reflections, and stacked plates multiply the sequences
+/// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
+/// Every other point costs the same, scaled by its own budget m as the tracer scales
+/// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
+/// spectral samples; the bounce-convergence report of monochrome Airy cases adds twelve budgets
+/// of at most 24 points. A case over [`MAX_PATH_EVENTS`] is refused with the estimate (units
+/// and seconds) and the key that drives it.
+pub fn preflight(case: &Case) -> Result<f64, CaseError> {
+    let spec = &case.spec;
+    let points = build::probe_points(&spec.probe);
+    let mut budgets = Vec::with_capacity(points.len());
+    for pt in &points {
+        let built = build::build_scene(&spec.scene, &pt.overrides)
+            .map_err(|e| case_err(case, "$.scene", e))?;
+        let spectrum = build::spectrum(&spec.light, &pt.overrides);
+        let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
+        let walked = !matches!(pt.observer, Observer::Point { .. })
+            && built
+                .scene
+                .sources
+                .iter()
+                .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
+        budgets.push((internal, walked, spectrum.len() as f64));
+    }
+    // The representative point: the largest budget, the centre among equals.
+    let centre = points.len() / 2;
+    let worst = budgets.iter().map(|b| b.0).max().unwrap_or(0);
+    let rep = if budgets[centre].0 == worst {
+        centre
+    } else {
+        budgets.iter().position(|b| b.0 == worst).unwrap_or(centre)
+    };
+    // Each point relative to the representative one.
+    let scale = |&(m, walked, samples): &(usize, bool, f64)| {
+        let r = (m as f64 + 2.0) / (worst as f64 + 2.0);
+        samples * if walked { r } else { r * r }
+    };
+    let mut weight: f64 = budgets.iter().map(scale).sum();
+    let convergence_report = matches!(spec.light, Light::Monochrome { .. })
+        && spec.references.iter().any(|r| {
+            matches!(
+                r.model,
+                ReferenceModel::Airy {
+                    index_override: None,
+                    ..
+                }
+            )
+        });
+    if convergence_report {
+        weight += 12.0 * points.len().min(24) as f64;
+    }
+    let (per_point, measured) = point_work(case, &points[rep], worst, MAX_PATH_EVENTS / weight)?;
+    let work = per_point * weight;
+    if work > MAX_PATH_EVENTS {
+        let key = if spec.trace.airy_tail_epsilon.is_some() {
+            "$.trace.airy_tail_epsilon"
+        } else {
+            "$.trace.max_internal_reflections"
+        };
+        return Err(case_err(
+            case,
+            key,
+            format!(
+                "this case would take {} {work:.2e} work units (≈ {:.0} s on the 2-core \
+                 machine of this project), more than the work cap of {MAX_PATH_EVENTS:.0e}: \
+                 {} surface(s) with up to {worst} internal reflections give {per_point:.2e} \
+                 units per probe point and wavelength (sequence discovery and solving; \
+                 reflections between separate surfaces in the ambient medium multiply the \
+                 sequences), times {} probe point(s) and their spectral samples: use fewer \
+                 surfaces, internal reflections, probe points or spectral samples",
+                if measured { "about" } else { "at least" },
+                work * SECONDS_PER_WORK_UNIT,
+                spec.scene.surfaces.len(),
+                points.len()
+            ),
+        ));
+    }
+    Ok(work)
+}
