@@ -1,0 +1,166 @@
+//! Enumerating the surface sequences a source's light can follow to a target, within the
+//! limits of a case (internal reflections, sequence count).
+
+use super::*;
+
+/// Limits of sequence enumeration.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct EnumerationLimits {
+    /// Maximum number of reflections inside a medium other than the ambient one.
+    pub max_internal_reflections: usize,
+    /// Maximum number of events in a sequence.
+    pub max_events: usize,
+}
+
+impl Default for EnumerationLimits {
+    fn default() -> Self {
+        EnumerationLimits {
+            max_internal_reflections: 1,
+            max_events: 8,
+        }
+    }
+}
+
+/// Discover the surface sequences light from `emitter` can follow: probe rays are traced
+/// forward (toward each of `probe_targets`) through the real, bounded scene, branching into
+/// reflected and refracted children, and every node of the resulting ray trees is a candidate
+/// sequence. They are returned as one tree of common beginnings ([`SequenceTree`]: sorted,
+/// without duplicates); the exact solver decides which of them reach a given point.
+pub fn discover_sequences(
+    scene: &Scene,
+    optics: &SceneOptics,
+    emitter: Emitter,
+    probe_targets: &[DVec3],
+    limits: &EnumerationLimits,
+) -> SequenceTree {
+    let mut found = TreeBuilder::new();
+    for &p in probe_targets {
+        let (o, d) = match emitter {
+            Emitter::Point { position } => (position, (p - position).normalize()),
+            Emitter::Line { point, axis } => {
+                let a = axis.normalize();
+                let o = point + (p - point).dot(a) * a;
+                (o, (p - o).normalize())
+            }
+            Emitter::PlaneWave {
+                direction,
+                reference_point,
+            } => {
+                let d = direction.normalize();
+                (p - (p - reference_point).dot(d) * d, d)
+            }
+        };
+        if !d.is_finite() {
+            continue;
+        }
+        explore(
+            scene,
+            optics,
+            o,
+            d,
+            optics.ambient_index,
+            None,
+            0,
+            (TreeBuilder::ROOT, 0),
+            limits,
+            &mut found,
+        );
+    }
+    found.finish()
+}
+
+#[allow(clippy::too_many_arguments)]
+fn explore(
+    scene: &Scene,
+    optics: &SceneOptics,
+    o: DVec3,
+    d: DVec3,
+    n: f64,
+    from: Option<usize>,
+    internal: usize,
+    (node, depth): (usize, usize),
+    limits: &EnumerationLimits,
+    found: &mut TreeBuilder,
+) {
+    found.mark(node);
+    if depth >= limits.max_events {
+        return;
+    }
+    // Nearest surface ahead that stops or splits the ray.
+    let mut best: Option<(f64, usize)> = None;
+    for (j, surf) in scene.surfaces.iter().enumerate() {
+        if Some(j) == from {
+            continue;
+        }
+        // Any plane ahead (t > 0, no distance epsilon: a film of 1 pm is found); the surface
+        // the ray leaves is skipped by name.
+        if let Some(t) = surf.plane.intersect(o, d)
+            && t > 0.0
+            && best.is_none_or(|(bt, _)| t < bt)
+        {
+            let x = o + t * d;
+            if surf.blocks(x) || surf.interacts(x) {
+                best = Some((t, j));
+            }
+        }
+    }
+    let Some((t, j)) = best else { return };
+    // On the plane itself (as the solver's `step_planes` puts it).
+    let x = scene.surfaces[j].plane.project(o + t * d);
+    let Some(so) = optics.surfaces[j] else { return }; // opaque: absorbed
+    let normal = scene.surfaces[j].plane.normal;
+    let hit = InterfaceHit {
+        surface: j,
+        point: x,
+        normal,
+        optics: so,
+        coherence: scene.surfaces[j].coherence(),
+    };
+    let (n1, n2) = interaction::indices_for(so, normal, d, n);
+    let is_internal = n != optics.ambient_index;
+    if !is_internal || internal < limits.max_internal_reflections {
+        let child = found.child(
+            node,
+            Event {
+                surface: j,
+                kind: EventKind::Reflect,
+            },
+        );
+        let inc = usize::from(is_internal);
+        explore(
+            scene,
+            optics,
+            x,
+            fresnel::reflect(d, normal),
+            n,
+            Some(j),
+            internal + inc,
+            (child, depth + 1),
+            limits,
+            found,
+        );
+    }
+    if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics
+        && let Some(d_t) = fresnel::refract(d, normal, n1, n2)
+    {
+        let child = found.child(
+            node,
+            Event {
+                surface: j,
+                kind: EventKind::Refract,
+            },
+        );
+        explore(
+            scene,
+            optics,
+            x,
+            d_t,
+            n2,
+            Some(j),
+            internal,
+            (child, depth + 1),
+            limits,
+            found,
+        );
+    }
+}
