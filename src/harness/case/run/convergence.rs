@@ -96,6 +96,8 @@ pub(super) fn convergence(
                 let bound = 2.0 * exact.sqrt() * tau + tau * tau;
                 Ok(((traced - exact).abs(), bound))
             })
+            .collect::<Vec<_>>()
+            .into_iter()
             .collect::<Result<_, _>>()?;
         rows.push(ConvergenceRow {
             orders,

@@ -532,9 +532,14 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
     let points = build::probe_points(&spec.probe);
     let measured = check_observables(case, &points)?;
     let t0 = Instant::now();
+    // Every point's result in probe order, then the first error by probe index: rayon's
+    // `collect` into a Result returns whichever failing point finished first, so the reason a
+    // case is refused would depend on thread scheduling.
     let outs: Vec<PointOut> = points
         .par_iter()
         .map(|pt| run_point(case, pt, &levels))
+        .collect::<Vec<_>>()
+        .into_iter()
         .collect::<Result<_, _>>()?;
     let trace_seconds = t0.elapsed().as_secs_f64();
     // A probe that no light reaches is refused as misplaced, unless every point is dark by
