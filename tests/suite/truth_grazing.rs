@@ -35,15 +35,7 @@ fn found(name: &str) -> PathBuf {
 
 /// The 50-digit values by case name, in probe order.
 fn mpmath_values() -> BTreeMap<String, Vec<f64>> {
-    let text = std::fs::read_to_string(root().join("tests/data/grazing_mpmath.csv")).unwrap();
-    let mut out: BTreeMap<String, Vec<f64>> = BTreeMap::new();
-    for line in text.lines().skip(1) {
-        let f: Vec<&str> = line.split(',').collect();
-        let v = out.entry(f[0].to_string()).or_default();
-        assert_eq!(f[1].parse::<usize>().unwrap(), v.len(), "{line}");
-        v.push(f[2].parse().unwrap());
-    }
-    out
+    crate::support::mpmath_profiles("grazing_mpmath.csv")
 }
 
 fn load_case(path: &Path) -> load::Case {

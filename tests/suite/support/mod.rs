@@ -23,3 +23,20 @@ pub fn snapshot(dir: &Path) -> BTreeMap<PathBuf, Vec<u8>> {
     }
     out
 }
+
+/// The 50-digit values of a `case,point,value` CSV under `tests/data/` (written by a
+/// `tools/*_mpmath.py` script), by case name in probe order.
+pub fn mpmath_profiles(csv: &str) -> BTreeMap<String, Vec<f64>> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(csv);
+    let text = std::fs::read_to_string(&path).unwrap();
+    let mut out: BTreeMap<String, Vec<f64>> = BTreeMap::new();
+    for line in text.lines().skip(1) {
+        let f: Vec<&str> = line.split(',').collect();
+        let v = out.entry(f[0].to_string()).or_default();
+        assert_eq!(f[1].parse::<usize>().unwrap(), v.len(), "{line}");
+        v.push(f[2].parse().unwrap());
+    }
+    out
+}
