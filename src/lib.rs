@@ -174,6 +174,7 @@ pub use crate::trace::{Arrival, TraceSettings};
 
 pub mod accumulate;
 pub mod harness;
+pub mod io;
 pub mod optics;
 pub mod output;
 pub mod scene;

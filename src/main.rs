@@ -429,7 +429,7 @@ fn run_cli() -> ExitCode {
                 let path = out.join("tradeoff").join(format!("{name}_pareto.png"));
                 let written = fringe::output::report::tradeoff_plot::pareto_png(name, &rows)
                     .and_then(|png| {
-                        fringe::output::report::write_atomic(&path, &png).map_err(|e| e.to_string())
+                        fringe::io::write_atomic(&path, &png).map_err(|e| e.to_string())
                     });
                 if let Err(e) = written {
                     eprintln!("error: {}: {e}", path.display());
@@ -439,15 +439,14 @@ fn run_cli() -> ExitCode {
             }
             bar.finish_and_clear();
             let path = out.join("tradeoff").join("tradeoff.csv");
-            if let Err(e) = fringe::output::report::write_atomic(
-                &path,
-                fringe::harness::tradeoff::csv(&all).as_bytes(),
-            ) {
+            if let Err(e) =
+                fringe::io::write_atomic(&path, fringe::harness::tradeoff::csv(&all).as_bytes())
+            {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
             let path = out.join("tradeoff").join("summary.txt");
-            if let Err(e) = fringe::output::report::write_atomic(&path, summaries.as_bytes()) {
+            if let Err(e) = fringe::io::write_atomic(&path, summaries.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
@@ -566,15 +565,13 @@ fn run_cli() -> ExitCode {
             let text = fringe::harness::forward_study::csv(&rows);
             let csv_path = out.join("forward").join("forward.csv");
             let path = out.join("forward").join("forward.csv");
-            if let Err(e) = fringe::output::report::write_atomic(&path, text.as_bytes()) {
+            if let Err(e) = fringe::io::write_atomic(&path, text.as_bytes()) {
                 eprintln!("error: {}: cannot write: {e}", path.display());
                 return ExitCode::from(2);
             }
             let path = out.join("forward").join("forward.png");
-            let written =
-                fringe::output::report::tradeoff_plot::forward_png(&rows).and_then(|png| {
-                    fringe::output::report::write_atomic(&path, &png).map_err(|e| e.to_string())
-                });
+            let written = fringe::output::report::tradeoff_plot::forward_png(&rows)
+                .and_then(|png| fringe::io::write_atomic(&path, &png).map_err(|e| e.to_string()));
             if let Err(e) = written {
                 eprintln!("error: {}: {e}", path.display());
                 return ExitCode::from(2);

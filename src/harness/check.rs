@@ -344,7 +344,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             dir.display()
         ))
     };
-    report::probe_writable(&opts.out).map_err(|e| unwritable("--out", &opts.out, e))?;
+    crate::io::probe_writable(&opts.out).map_err(|e| unwritable("--out", &opts.out, e))?;
     // Each case's golden folder (`golden_dir_for`), and the distinct folders in first-seen order.
     let golden_dirs: Vec<PathBuf> = files.iter().map(|f| golden_dir_for(opts, f)).collect();
     let mut golden_folders: Vec<&PathBuf> = Vec::new();
@@ -355,12 +355,13 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     }
     for &g in &golden_folders {
         if opts.bless {
-            report::probe_writable(g).map_err(|e| unwritable("the golden folder", g, e))?;
+            crate::io::probe_writable(g).map_err(|e| unwritable("the golden folder", g, e))?;
         }
         // A bless interrupted by a kill is finished (or undone) before goldens are read.
-        if g.join(report::BLESS_STAGE).exists() {
-            let _lock = report::lock_dir(g).map_err(|e| unwritable("the golden folder", g, e))?;
-            report::recover_bless(g).map_err(|e| unwritable("the golden folder", g, e))?;
+        if g.join(crate::io::BLESS_STAGE).exists() {
+            let _lock =
+                crate::io::lock_dir(g).map_err(|e| unwritable("the golden folder", g, e))?;
+            crate::io::recover_bless(g).map_err(|e| unwritable("the golden folder", g, e))?;
         }
     }
     // The cases (each parallel over its probe points) and the stability sweep run side by
@@ -461,19 +462,19 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     // Everything ran: now write, each file atomically, one run at a time per `--out`.
     let io =
         |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
-    let out_lock = report::lock_dir(&opts.out).map_err(|e| io(&opts.out, e))?;
-    report::remove_stale_temp_files(&opts.out).map_err(|e| io(&opts.out, e))?;
+    let out_lock = crate::io::lock_dir(&opts.out).map_err(|e| io(&opts.out, e))?;
+    crate::io::remove_stale_temp_files(&opts.out).map_err(|e| io(&opts.out, e))?;
     // Each case's files (in parallel: each case has its own folder), and beside them the
     // paper's figures when the whole library runs (src/output/figures.rs); the first error in case
     // order is reported.
     let write_case = |(case, r): (&Case, &CaseResult)| -> Result<(), InputError> {
         let dir = opts.out.join(&r.name);
-        report::remove_stale_temp_files(&dir).map_err(|e| io(&dir, e))?;
+        crate::io::remove_stale_temp_files(&dir).map_err(|e| io(&dir, e))?;
         let p = dir.join("profile.csv");
-        report::write_atomic(&p, report::profile_csv(r).as_bytes()).map_err(|e| io(&p, e))?;
+        crate::io::write_atomic(&p, report::profile_csv(r).as_bytes()).map_err(|e| io(&p, e))?;
         if !r.convergence.is_empty() {
             let p = dir.join("convergence.csv");
-            report::write_atomic(&p, report::convergence_csv(r).as_bytes())
+            crate::io::write_atomic(&p, report::convergence_csv(r).as_bytes())
                 .map_err(|e| io(&p, e))?;
         }
         // profile.png, convergence.png and probe pictures (src/output/report/html.rs).
@@ -516,11 +517,11 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         .collect();
     let p = opts.out.join("summary.json");
     let json = serde_json::to_string_pretty(&summary).map_err(|e| InputError(e.to_string()))?;
-    report::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
+    crate::io::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
     let p = opts.out.join("stability.csv");
-    report::write_atomic(&p, stability::csv(&sweep.rows).as_bytes()).map_err(|e| io(&p, e))?;
+    crate::io::write_atomic(&p, stability::csv(&sweep.rows).as_bytes()).map_err(|e| io(&p, e))?;
     let p = opts.out.join("stability_paths.png");
-    report::write_atomic(&p, &stability_png).map_err(|e| io(&p, e))?;
+    crate::io::write_atomic(&p, &stability_png).map_err(|e| io(&p, e))?;
     // The whole library also makes the paper's figures (src/output/figures.rs); then the one-page
     // report index.html embeds everything written above.
     if let Some(m) = figures {
@@ -552,8 +553,8 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
                 .map(|(_, name, text)| (name.clone(), text.clone()))
                 .collect();
             std::fs::create_dir_all(g).map_err(|e| io(g, e))?;
-            let _lock = report::lock_dir(g).map_err(|e| io(g, e))?;
-            report::bless_set(g, &set).map_err(|e| io(g, e))?;
+            let _lock = crate::io::lock_dir(g).map_err(|e| io(g, e))?;
+            crate::io::bless_set(g, &set).map_err(|e| io(g, e))?;
         }
     }
     Ok(CheckOutcome {

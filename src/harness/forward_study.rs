@@ -301,9 +301,9 @@ pub fn run_observed(
     rows
 }
 
-/// The study as CSV (written by the `csv` crate through [`crate::output::report::csv_text`]).
+/// The study as CSV (written by the `csv` crate through [`crate::io::csv_text`]).
 pub fn csv(rows: &[StudyRow]) -> String {
-    crate::output::report::csv_text(
+    crate::io::csv_text(
         &[
             "scene",
             "estimator",

@@ -9,12 +9,13 @@
 
 use crate::accumulate::fidelity::Fidelity;
 use crate::harness::case::load::{self, Case};
+use crate::io::write_atomic;
 use crate::output::colour::{
     self, Adaptation, Illuminant, SpectralIntegrator, WavelengthGrid, delta_e_2000, xyz_to_lab,
 };
 use crate::output::render::{self, Image, ImageValues, Request, Screen, Shading, Spectrum};
 use crate::output::report::image::{self as img, DiffStats, Rgb8Image};
-use crate::output::report::{plot, write_atomic};
+use crate::output::report::plot;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
@@ -370,7 +371,7 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
     let t = Instant::now();
     let colour_error = colour_error_study(opts)?;
     timings.push(("colour-error study".into(), t.elapsed().as_secs_f64()));
-    let csv = crate::output::report::csv_text(
+    let csv = crate::io::csv_text(
         &[
             "samples",
             "newton_d65_mean_de00",

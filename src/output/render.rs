@@ -721,7 +721,7 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
                         pic = pic.extrude(height);
                     }
                     let f = file_for(im.shading);
-                    crate::output::report::write_atomic(&f, &pic.png()?)
+                    crate::io::write_atomic(&f, &pic.png()?)
                         .map_err(|e| format!("{}: cannot write: {e}", f.display()))?;
                     lines.push(format!("{}: {}", im.shading.name(), f.display()));
                 }
@@ -748,7 +748,7 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
                         pic = pic.extrude(height);
                     }
                     let f = file_for(im.shading);
-                    crate::output::report::write_atomic(&f, &pic.png()?)
+                    crate::io::write_atomic(&f, &pic.png()?)
                         .map_err(|e| format!("{}: cannot write: {e}", f.display()))?;
                     lines.push(format!("{}: {}", im.shading.name(), f.display()));
                 }

@@ -126,8 +126,8 @@ fn a_kill_during_bless_leaves_complete_old_or_complete_new_goldens() {
         }
         // The next run (here its recovery step) makes the set whole.
         {
-            let _lock = fringe::output::report::lock_dir(&golden).unwrap();
-            fringe::output::report::recover_bless(&golden).unwrap();
+            let _lock = fringe::io::lock_dir(&golden).unwrap();
+            fringe::io::recover_bless(&golden).unwrap();
         }
         let after = snapshot(&golden);
         assert!(

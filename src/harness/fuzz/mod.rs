@@ -593,7 +593,7 @@ impl FuzzReport {
         for f in &self.failures {
             let path = dir.join(&f.file_name);
             let text = serde_json::to_string_pretty(&f.case).map_err(|e| e.to_string())? + "\n";
-            crate::output::report::write_atomic(&path, text.as_bytes())
+            crate::io::write_atomic(&path, text.as_bytes())
                 .map_err(|e| format!("{}: cannot write: {e}", path.display()))?;
             written.push(path);
         }

@@ -15,7 +15,6 @@ use crate::harness::case::load::{self, Case};
 use crate::harness::case::run::{self, CaseResult};
 use crate::harness::case::spec::{FarSide, Observer};
 use crate::harness::check::{self, CheckOptions, Format, InputError};
-use crate::output::report;
 use serde_json::json;
 use std::path::Path;
 
@@ -72,7 +71,7 @@ pub fn probes_csv(case: &Case) -> String {
             ]);
             fields
         });
-    report::csv_text(
+    crate::io::csv_text(
         &[
             "point",
             "coordinate",
@@ -117,7 +116,7 @@ pub fn expected_csv(result: &CaseResult, qs: &[Quantity]) -> String {
             }
         }
     }
-    report::csv_text(&header.iter().map(String::as_str).collect::<Vec<_>>(), rows)
+    crate::io::csv_text(&header.iter().map(String::as_str).collect::<Vec<_>>(), rows)
 }
 
 /// `pack.json` of a case run.
@@ -247,7 +246,7 @@ pub fn export(cases: &[String], cases_dir: &Path, out: &Path) -> Result<Vec<Stri
         let dir = out.join(&name);
         for (f, bytes) in files {
             let p = dir.join(f);
-            report::write_atomic(&p, &bytes)
+            crate::io::write_atomic(&p, &bytes)
                 .map_err(|e| InputError(format!("{}: cannot write: {e}", p.display())))?;
         }
         lines.push(format!("{name}: {}", dir.display()));

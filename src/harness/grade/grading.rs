@@ -157,7 +157,7 @@ fn profile_csv(result: &CaseResult, quantities: &[Quantity], values: &[Vec<f64>]
             rows.push(fields);
         }
     }
-    report::csv_text(&header.iter().map(String::as_str).collect::<Vec<_>>(), rows)
+    crate::io::csv_text(&header.iter().map(String::as_str).collect::<Vec<_>>(), rows)
 }
 
 /// Load and run the case named by `case` (library name or path), as `check` does.
@@ -218,9 +218,10 @@ pub fn grade(opts: &GradeOptions) -> Result<GradeOutcome, InputError> {
         |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
     let p = dir.join("grade.json");
     let json = serde_json::to_string_pretty(&outcome).map_err(|e| InputError(e.to_string()))?;
-    report::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
+    crate::io::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
     let p = dir.join("values_profile.csv");
-    report::write_atomic(&p, profile_csv(&result, &qs, &vals).as_bytes()).map_err(|e| io(&p, e))?;
+    crate::io::write_atomic(&p, profile_csv(&result, &qs, &vals).as_bytes())
+        .map_err(|e| io(&p, e))?;
     report::html::write_index(&opts.out).map_err(InputError)?;
     Ok(outcome)
 }

@@ -47,7 +47,7 @@ pub fn to_csv(quantities: &[Quantity], values: &[Vec<f64>]) -> String {
             .zip(v)
             .map(|(x, y)| vec![q.name.clone(), format!("{x:.17e}"), format!("{y:.17e}")])
     });
-    crate::output::report::csv_text(&HEADER.split(',').collect::<Vec<_>>(), rows)
+    crate::io::csv_text(&HEADER.split(',').collect::<Vec<_>>(), rows)
 }
 
 /// Parse a value file against the quantities it must supply; returns one vector per quantity.

@@ -444,7 +444,7 @@ pub fn summarize(rows: &[GridRow]) -> Vec<Summary> {
 
 /// `models.csv`: every grid row.
 pub fn grid_csv(rows: &[GridRow]) -> String {
-    crate::output::report::csv_text(
+    crate::io::csv_text(
         &[
             "stack",
             "comparison",
@@ -478,7 +478,7 @@ fn opt(x: Option<f64>, unit: &str) -> String {
 /// `summary.csv`: the error table.
 pub fn summary_csv(rows: &[Summary]) -> String {
     let o = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
-    crate::output::report::csv_text(
+    crate::io::csv_text(
         &[
             "stack",
             "comparison",
@@ -563,7 +563,7 @@ pub fn write(out: &std::path::Path) -> Result<String, String> {
         ("summary.md", md.clone()),
     ] {
         let p = dir.join(name);
-        crate::output::report::write_atomic(&p, text.as_bytes())
+        crate::io::write_atomic(&p, text.as_bytes())
             .map_err(|e| format!("{}: cannot write: {e}", p.display()))?;
     }
     // The report page shows the table (src/output/report/renderers.rs).

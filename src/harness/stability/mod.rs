@@ -311,7 +311,7 @@ pub fn verdict(pass: Option<bool>) -> &'static str {
 /// illustration rows.
 pub fn csv(rows: &[StabilityRow]) -> String {
     // Written by the `csv` crate (a field with a comma, a quote or a line break is quoted).
-    crate::output::report::csv_text(
+    crate::io::csv_text(
         &CSV_HEADER.split(',').collect::<Vec<_>>(),
         rows.iter().map(|r| {
             vec![

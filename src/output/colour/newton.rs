@@ -121,7 +121,7 @@ pub fn write_newton_csv(
         grid.lambdas_m[0] * NM_PER_M,
         grid.lambdas_m[grid.len() - 1] * NM_PER_M,
     );
-    let table = crate::output::report::csv_text(
+    let table = crate::io::csv_text(
         &[
             "thickness_nm",
             "X",

@@ -7,13 +7,14 @@
 //! `figures/figures.json`), so `fringe check` and `fringe figures` both refresh it.
 
 use super::image::{self as img, Rgb8Image};
-use super::{plot, write_atomic};
+use super::plot;
 use crate::accumulate::fidelity::Fidelity;
 use crate::harness::case::build::{self, Overrides};
 use crate::harness::case::load::Case;
 use crate::harness::case::reference::MetricKind;
 use crate::harness::case::run::CaseResult;
 use crate::harness::case::spec::Probe;
+use crate::io::write_atomic;
 use crate::output::figures::{Manifest, PAPER_FIG8};
 use serde::{Deserialize, Serialize};
 use std::fmt::Write as _;
