@@ -9,8 +9,8 @@
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fringe::accumulate::fidelity::Fidelity;
+use fringe::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
 use fringe::harness::case::{build, load, run};
-use fringe::output::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
 use fringe::output::render::{self, Request, Screen, Shading, Spectrum};
 use std::hint::black_box;
 use std::path::Path;

@@ -80,10 +80,10 @@ enum IlluminantArg {
 }
 
 impl IlluminantArg {
-    fn get(self) -> fringe::output::colour::Illuminant {
+    fn get(self) -> fringe::colour::Illuminant {
         match self {
-            IlluminantArg::D65 => fringe::output::colour::Illuminant::D65,
-            IlluminantArg::E => fringe::output::colour::Illuminant::E,
+            IlluminantArg::D65 => fringe::colour::Illuminant::D65,
+            IlluminantArg::E => fringe::colour::Illuminant::E,
         }
     }
 }
@@ -723,7 +723,7 @@ fn render_command(
     fidelity: &[String],
     samples: Option<usize>,
     wavelengths_nm: Option<Vec<f64>>,
-    illuminant: fringe::output::colour::Illuminant,
+    illuminant: fringe::colour::Illuminant,
     size: Option<&str>,
     output: Option<PathBuf>,
     cases_dir: &std::path::Path,
@@ -741,7 +741,7 @@ fn render_command(
             ));
         }
     }
-    use fringe::output::colour::WavelengthGrid;
+    use fringe::colour::WavelengthGrid;
     let shadings = fidelity
         .iter()
         .map(|f| fringe::output::render::parse_shading(f))

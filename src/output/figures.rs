@@ -8,11 +8,11 @@
 //! white light; the Fig. 8 statistics compare 8-bit pictures exactly as the paper describes.
 
 use crate::accumulate::fidelity::Fidelity;
-use crate::harness::case::load::{self, Case};
-use crate::io::write_atomic;
-use crate::output::colour::{
+use crate::colour::{
     self, Adaptation, Illuminant, SpectralIntegrator, WavelengthGrid, delta_e_2000, xyz_to_lab,
 };
+use crate::harness::case::load::{self, Case};
+use crate::io::write_atomic;
 use crate::output::render::{self, Image, ImageValues, Request, Screen, Shading, Spectrum};
 use crate::output::report::image::{self as img, DiffStats, Rgb8Image};
 use crate::output::report::plot;

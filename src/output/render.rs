@@ -36,11 +36,11 @@
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;
+use crate::colour::SpectralIntegrator;
 use crate::harness::case::build::{self, Built, GridGeometry, Overrides};
 use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
-use crate::output::colour::SpectralIntegrator;
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -631,10 +631,7 @@ pub struct Command {
     /// The shadings to render.
     pub shadings: Vec<Shading>,
     /// White light (grid, illuminant); `None`: the case's own light.
-    pub white: Option<(
-        crate::output::colour::WavelengthGrid,
-        crate::output::colour::Illuminant,
-    )>,
+    pub white: Option<(crate::colour::WavelengthGrid, crate::colour::Illuminant)>,
     /// Picture size (columns, rows); `None`: the probe's pixels.
     pub size: Option<(usize, usize)>,
     /// Output PNG; with several shadings `_<name>` is inserted before the extension.

@@ -1,7 +1,7 @@
-//! Tests of `fringe::output::colour`. Every check asserts and prints actual, expected and error.
+//! Tests of `fringe::colour`. Every check asserts and prints actual, expected and error.
 //! Each expected value says where it comes from; none is copied from the code's own output.
 
-use fringe::output::colour::{
+use fringe::colour::{
     Adaptation, Cmf, Illuminant, SpectralIntegrator, WHITE_D65, WavelengthGrid, bradford_adapt,
     delta_e_2000, illuminant_spd, newton_sequence, soap_film_reflectance, srgb_decode, srgb_encode,
     to_srgb8, wavelength_to_srgb_hue, write_newton_csv, xyz_to_lab, xyz_to_linear_srgb,
@@ -610,7 +610,7 @@ proptest! {
 // ---------------------------------------------------------------------------------------------
 
 /// Newton rows of the soap film under D65 (no adaptation needed), on the CIE 1 nm grid.
-fn newton_d65(thicknesses_nm: &[f64]) -> Vec<fringe::output::colour::NewtonRow> {
+fn newton_d65(thicknesses_nm: &[f64]) -> Vec<fringe::colour::NewtonRow> {
     let thicknesses_m: Vec<f64> = thicknesses_nm.iter().map(|d| d * NM).collect();
     let grid = WavelengthGrid::cie_1nm();
     newton_sequence(

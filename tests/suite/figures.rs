@@ -2,8 +2,8 @@
 //! Newton's CSV against `colour::newton_sequence`, plots of the right size, a self-contained
 //! index.html naming every case, and the figure scenes themselves.
 
+use fringe::colour::{self, Adaptation, Illuminant, WavelengthGrid};
 use fringe::harness::check::{self, CheckOptions, Format};
-use fringe::output::colour::{self, Adaptation, Illuminant, WavelengthGrid};
 use fringe::output::figures::{self, FigureOptions};
 use fringe::output::report::image::{self as img, Rgb8Image};
 use fringe::output::report::{html, plot};

@@ -3,10 +3,10 @@
 //! two-beam closed form where that applies, and the command line writes PNGs of the asked size.
 
 use fringe::accumulate::fidelity::Fidelity;
+use fringe::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
 use fringe::harness::case::build::{self, Overrides};
 use fringe::harness::case::load::{self, Case};
 use fringe::harness::case::spec::{Light, MediumSpec, Observer, Probe};
-use fringe::output::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
 use fringe::output::render::{self, ImageValues, Request, Screen, Shading, Spectrum};
 use fringe::output::report::image as img;
 use fringe::trace;

@@ -143,7 +143,7 @@ fn fitted_sensitivities_approximate_the_cie_integral() {
     // follows it to 0.03 of the white; a transcription error in one of its constants would be
     // far larger. Beyond, the fit departs more (0.06 at 4 µm, printed): that is part of what
     // the model costs on thick layers, measured by `fringe models`.
-    let cmf = fringe::output::colour::Cmf::cie1931_2deg();
+    let cmf = fringe::colour::Cmf::cie1931_2deg();
     let integral = |opd: f64, c: usize| {
         let (mut num, mut den) = (0.0, 0.0);
         for k in 0..=4700 {
@@ -232,12 +232,9 @@ fn thick_plate_colour_of_the_incoherent_plate_matches_the_exact_colour() {
     // The CIE functions average the 10 µm plate's fringes (period ≈ 10 nm at 550 nm) away:
     // ΔE00 of the per-polarization incoherent plate is small at every angle; a 0.3 µm film
     // shows interference colour (large ΔE00) that no incoherent model can reproduce.
-    let grid = fringe::output::colour::WavelengthGrid::cie_1nm();
-    let integ = fringe::output::colour::SpectralIntegrator::new(
-        &grid,
-        fringe::output::colour::Illuminant::D65,
-    )
-    .unwrap();
+    let grid = fringe::colour::WavelengthGrid::cie_1nm();
+    let integ =
+        fringe::colour::SpectralIntegrator::new(&grid, fringe::colour::Illuminant::D65).unwrap();
     let white = integ.white_xyz();
     let colour = |f: &Film, cos1: f64, m: Option<Model>| {
         let spec: Vec<f64> = integ

@@ -33,8 +33,8 @@
 //! instead, which is not modelled here).
 
 use super::Film;
+use crate::colour::XYZ_TO_LINEAR_SRGB;
 use crate::optics::fresnel::{cos2_theta_t, fresnel};
-use crate::output::colour::XYZ_TO_LINEAR_SRGB;
 use std::f64::consts::PI;
 
 /// Fourier orders m the model keeps (Belcour & Barla's supplemental code: m = 1..3).

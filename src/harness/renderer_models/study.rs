@@ -5,13 +5,13 @@
 //!
 //! Quantities: R is the unpolarized power reflectance ½(R_s + R_p) (dimensionless, docs/PHYSICS.md
 //! §3a); |ΔR| is the largest difference over the wavelengths 360–830 nm at 1 nm; colours are CIE
-//! 1931 XYZ of R(λ) under D65 with Y = 1 for a perfect reflector (`src/output/colour/spectrum.rs`, C1), ΔE00
+//! 1931 XYZ of R(λ) under D65 with Y = 1 for a perfect reflector (`src/colour/spectrum.rs`, C1), ΔE00
 //! relative to the D65 white; retardance is arg r_p − arg r_s of the reflected wave at 550 nm.
 //! Every comparison is a grid of points (stack, angle, thickness); [`summarize`] reduces it to
 //! where ΔE00 < 1 holds and the worst errors.
 
 use super::{Film, Model, belcour_barla, exact_reflectance, incoherent, tir_phase_zero};
-use crate::output::colour::{self, Illuminant, SpectralIntegrator, WavelengthGrid};
+use crate::colour::{self, Illuminant, SpectralIntegrator, WavelengthGrid};
 use rayon::prelude::*;
 use std::fmt::Write as _;
 

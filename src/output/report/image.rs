@@ -3,14 +3,14 @@
 //!
 //! Display conventions (stated in the report next to every picture):
 //! - **Monochrome** images are drawn in the hue of their wavelength
-//!   ([`crate::output::colour::wavelength_to_srgb_hue`], brightest channel 1), linear value
+//!   ([`crate::colour::wavelength_to_srgb_hue`], brightest channel 1), linear value
 //!   I / I_scale, then clipped and sRGB-encoded; I_scale is the brightest pixel unless a common
 //!   scale is given, so the brightest fringe is full scale.
-//! - **Colour** images: XYZ × exposure → [`crate::output::colour::xyz_to_srgb8`] (adaptation, IEC
+//! - **Colour** images: XYZ × exposure → [`crate::colour::xyz_to_srgb8`] (adaptation, IEC
 //!   matrix, clip, transfer curve); the exposure makes the brightest Y of the image (or of a
 //!   set of images shown together) equal 1.
 
-use crate::output::colour::{self, Adaptation, Illuminant};
+use crate::colour::{self, Adaptation, Illuminant};
 
 /// An 8-bit sRGB picture, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq, Eq)]

@@ -113,7 +113,7 @@ pub fn write_newton_csv(
 ) -> Result<String, String> {
     let rows = newton_sequence(n_film, thicknesses_m, grid, illuminant, adaptation)?;
     let comment = format!(
-        "# fringe::output::colour::newton_sequence: soap film n_film={n_film} in air, normal incidence, \
+        "# fringe::colour::newton_sequence: soap film n_film={n_film} in air, normal incidence, \
          Airy reflectance; illuminant={}, adaptation={}, CIE 1931 2deg, {} samples {:.3}..{:.3} nm\n",
         illuminant.name(),
         adaptation.name(),

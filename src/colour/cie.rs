@@ -5,9 +5,9 @@ use super::*;
 use std::sync::OnceLock;
 
 /// CIE 1931 2° colour matching functions, 360–830 nm at 1 nm (CIE 15:2004 Table T.4).
-const CIE1931_2DEG_CSV: &str = include_str!("../../../data/cie1931_2deg.csv");
+const CIE1931_2DEG_CSV: &str = include_str!("../../data/cie1931_2deg.csv");
 /// CIE standard illuminant D65 relative SPD, 360–830 nm at 1 nm (CIE 15:2004 Table T.1).
-const CIE_D65_CSV: &str = include_str!("../../../data/cie_d65.csv");
+const CIE_D65_CSV: &str = include_str!("../../data/cie_d65.csv");
 
 /// First wavelength of the shipped tables, in nanometres.
 pub(super) const TABLE_START_NM: f64 = 360.0;
