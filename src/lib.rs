@@ -173,6 +173,7 @@ pub use crate::trace::path::Target;
 pub use crate::trace::{Arrival, TraceSettings};
 
 pub mod accumulate;
+pub mod cli;
 pub mod colour;
 pub mod harness;
 pub mod io;

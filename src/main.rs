@@ -385,7 +385,7 @@ fn run_cli() -> ExitCode {
             out!("{}", fringe::harness::case::schema::case_schema_text());
             ExitCode::SUCCESS
         }
-        Command::Models { out } => match fringe::harness::renderer_models::study::write(&out) {
+        Command::Models { out } => match fringe::cli::models(&out) {
             Ok(table) => {
                 out!("{table}");
                 ExitCode::SUCCESS
@@ -609,7 +609,7 @@ fn run_cli() -> ExitCode {
                 },
                 bless,
             };
-            match check::check(&opts) {
+            match fringe::cli::check(&opts) {
                 Err(e) => {
                     eprintln!("error: {}", e.0);
                     ExitCode::from(2)
@@ -652,7 +652,7 @@ fn run_cli() -> ExitCode {
 }
 
 /// The rows that failed their tolerance, one line each on stderr (`check` and `grade`).
-fn print_failed_rows(rows: &[fringe::output::report::Row]) {
+fn print_failed_rows(rows: &[fringe::harness::verdict::Row]) {
     for r in rows.iter().filter(|r| r.pass == Some(false)) {
         eprintln!(
             "  {} {} {}: max|dev| {:e} > {:e}; {}",
@@ -689,7 +689,7 @@ fn grade_command(
         out,
         level,
     };
-    match grading::grade(&opts) {
+    match fringe::cli::grade(&opts) {
         Err(e) => {
             eprintln!("error: {}", e.0);
             ExitCode::from(2)

@@ -1,12 +1,13 @@
 //! `fringe check`: resolve case names, run them, compare with closed forms and golden files,
-//! run the stability sweep (`src/harness/stability/`, on every run: it is cheap and checks the tracer
-//! every case relies on), write reports atomically, and decide the exit code (0 pass, 1 a case
-//! or a stability check failed, 2 bad input).
+//! and run the stability sweep (`src/harness/stability/`, on every run: it is cheap and checks
+//! the tracer every case relies on). The verdict decides the exit code (0 pass, 1 a case or a
+//! stability check failed, 2 bad input); the command layer (`src/cli.rs`) writes the reports
+//! and the golden files of a bless.
 
 use crate::harness::case::load::{self, Case, CaseError};
 use crate::harness::case::run::{self, CaseResult};
 use crate::harness::stability::{self, StabilityRow, Sweep};
-use crate::output::report::{self, GoldenError, Row};
+use crate::harness::verdict::{self, GoldenError, Row};
 use rayon::prelude::*;
 use std::path::{Path, PathBuf};
 
@@ -318,8 +319,31 @@ fn bless_command(opts: &CheckOptions, file: &Path, name: &str) -> String {
     cmd
 }
 
-/// Load every case (all must be valid before anything runs), run them, compare, write.
-pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
+/// What a check computed before anything is written: the loaded cases and their results (in
+/// file order), each case's work units, the verdict rows (cases, then the stability sweep), the
+/// golden files a `--bless` would write, and the stability sweep.
+pub struct Evaluation {
+    /// The cases, in the order of their files.
+    pub cases: Vec<Case>,
+    /// Each case's result.
+    pub results: Vec<CaseResult>,
+    /// Each case's work units (`run::preflight`).
+    pub work: Vec<f64>,
+    /// Verdict rows of every case, then the stability rows (case [`STABILITY`]).
+    pub rows: Vec<Row>,
+    /// With `--bless`: (golden folder, file name, text) of every case's golden file.
+    pub goldens: Vec<(PathBuf, String, String)>,
+    /// The distinct golden folders of the cases, in first-seen order.
+    pub golden_folders: Vec<PathBuf>,
+    /// The stability sweep.
+    pub sweep: Sweep,
+}
+
+/// Load every case (all must be valid before anything runs), show that the folders the run
+/// writes are writable, run the cases and the stability sweep, and compare with the closed
+/// forms and the golden files. Writes nothing but the recovery of an interrupted bless: the
+/// reports and a bless are written by the command layer (`fringe::cli::check`).
+pub fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
     let files = resolve(opts)?;
     let cases: Vec<Case> = files
         .iter()
@@ -375,7 +399,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     let mut rows = Vec::new();
     let mut goldens = Vec::new();
     for (k, (case, r)) in cases.iter().zip(&results).enumerate() {
-        let mut case_rows = report::rows(r);
+        let mut case_rows = verdict::rows(r);
         // A NaN deviation compares false with every tolerance and would read as a pass: any
         // non-finite traced or closed-form value fails the case.
         let non_finite: Vec<String> = r
@@ -406,10 +430,10 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             });
         }
         let golden_path = golden_dirs[k].join(format!("{}.csv", r.name));
-        let text = report::golden_csv(r);
+        let text = verdict::golden_csv(r);
         // The case's golden tolerance, or its values' conditioning when larger (golden files
         // are reproducible across CPUs to their conditioning, not bit for bit).
-        let golden_tolerance = report::golden_tolerance(case, r);
+        let golden_tolerance = verdict::golden_tolerance(case, r);
         let golden_row = |pass: bool, dev: f64, note: String| Row {
             case: r.name.clone(),
             fidelity: "all".into(),
@@ -422,7 +446,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
             note,
         };
         if opts.bless {
-            goldens.push((&golden_dirs[k], format!("{}.csv", r.name), text));
+            goldens.push((golden_dirs[k].clone(), format!("{}.csv", r.name), text));
         } else {
             match std::fs::read_to_string(&golden_path) {
                 Err(_) => case_rows.push(golden_row(
@@ -434,7 +458,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
                         bless_command(opts, &files[k], &r.name)
                     ),
                 )),
-                Ok(g) => match report::compare_golden(r, &g, golden_tolerance) {
+                Ok(g) => match verdict::compare_golden(r, &g, golden_tolerance) {
                     Ok(dev) => {
                         case_rows.push(golden_row(true, dev, golden_path.display().to_string()))
                     }
@@ -455,113 +479,15 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         rows.extend(case_rows);
     }
 
-    // The stability sweep: judged like a case, its plot drawn before anything is written.
+    // The stability sweep: judged like a case.
     rows.extend(stability_table_rows(&sweep));
-    let stability_png = report::plot::stability_paths_png(&sweep.paths).map_err(InputError)?;
-
-    // Everything ran: now write, each file atomically, one run at a time per `--out`.
-    let io =
-        |p: &Path, e: std::io::Error| InputError(format!("{}: cannot write: {e}", p.display()));
-    let out_lock = crate::io::lock_dir(&opts.out).map_err(|e| io(&opts.out, e))?;
-    crate::io::remove_stale_temp_files(&opts.out).map_err(|e| io(&opts.out, e))?;
-    // Each case's files (in parallel: each case has its own folder), and beside them the
-    // paper's figures when the whole library runs (src/output/figures.rs); the first error in case
-    // order is reported.
-    let write_case = |(case, r): (&Case, &CaseResult)| -> Result<(), InputError> {
-        let dir = opts.out.join(&r.name);
-        crate::io::remove_stale_temp_files(&dir).map_err(|e| io(&dir, e))?;
-        let p = dir.join("profile.csv");
-        crate::io::write_atomic(&p, report::profile_csv(r).as_bytes()).map_err(|e| io(&p, e))?;
-        if !r.convergence.is_empty() {
-            let p = dir.join("convergence.csv");
-            crate::io::write_atomic(&p, report::convergence_csv(r).as_bytes())
-                .map_err(|e| io(&p, e))?;
-        }
-        // profile.png, convergence.png and probe pictures (src/output/report/html.rs).
-        report::html::write_case_files(&dir, case, r).map_err(InputError)
-    };
-    let (written, figures) = rayon::join(
-        || {
-            cases
-                .par_iter()
-                .zip(&results)
-                .map(write_case)
-                .collect::<Vec<_>>()
-        },
-        || {
-            opts.cases.is_empty().then(|| {
-                crate::output::figures::generate(
-                    &opts.out,
-                    &crate::output::figures::FigureOptions::check_default(),
-                )
-            })
-        },
-    );
-    written.into_iter().collect::<Result<(), _>>()?;
-    let summary: Vec<report::CaseSummary> = results
-        .iter()
-        .zip(&work)
-        .map(|(r, &work_units)| report::CaseSummary {
-            case: &r.name,
-            description: &r.description,
-            formula: &r.formula,
-            auto: r.auto.level.to_string(),
-            auto_reason: &r.auto.reason,
-            internal_reflections: r.internal_reflections,
-            dark_points: r.dark_points,
-            trace_seconds: r.trace_seconds,
-            work_units,
-            rows: rows.iter().filter(|x| x.case == r.name).cloned().collect(),
-            point_values: report::point_values(r),
-        })
-        .collect();
-    let p = opts.out.join("summary.json");
-    let json = serde_json::to_string_pretty(&summary).map_err(|e| InputError(e.to_string()))?;
-    crate::io::write_atomic(&p, json.as_bytes()).map_err(|e| io(&p, e))?;
-    let p = opts.out.join("stability.csv");
-    crate::io::write_atomic(&p, stability::csv(&sweep.rows).as_bytes()).map_err(|e| io(&p, e))?;
-    let p = opts.out.join("stability_paths.png");
-    crate::io::write_atomic(&p, &stability_png).map_err(|e| io(&p, e))?;
-    // The whole library also makes the paper's figures (src/output/figures.rs); then the one-page
-    // report index.html embeds everything written above.
-    if let Some(m) = figures {
-        let m = m.map_err(InputError)?;
-        for e in &m.fig8 {
-            eprint!(
-                "{}",
-                crate::output::figures::fig8_text(&e.left, &e.right, &e.stats)
-            );
-        }
-    }
-    report::html::write_index(&opts.out).map_err(InputError)?;
-    drop(out_lock);
-
-    let mut failed_cases: Vec<String> = rows
-        .iter()
-        .filter(|r| r.pass == Some(false))
-        .map(|r| r.case.clone())
-        .collect();
-    failed_cases.dedup();
-    // Golden files are baselines of a correct tracer: only a passing run is blessed, and its
-    // files are written as one set.
-    let bless_refused = opts.bless && !failed_cases.is_empty();
-    if opts.bless && !bless_refused {
-        for &g in &golden_folders {
-            let set: Vec<(String, String)> = goldens
-                .iter()
-                .filter(|(dir, _, _)| *dir == g)
-                .map(|(_, name, text)| (name.clone(), text.clone()))
-                .collect();
-            std::fs::create_dir_all(g).map_err(|e| io(g, e))?;
-            let _lock = crate::io::lock_dir(g).map_err(|e| io(g, e))?;
-            crate::io::bless_set(g, &set).map_err(|e| io(g, e))?;
-        }
-    }
-    Ok(CheckOutcome {
-        rows,
+    Ok(Evaluation {
+        cases,
         results,
-        failed_cases,
-        stability: sweep,
-        bless_refused,
+        work,
+        rows,
+        goldens,
+        golden_folders: golden_folders.into_iter().cloned().collect(),
+        sweep,
     })
 }

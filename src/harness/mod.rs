@@ -19,3 +19,5 @@ pub mod renderer_models;
 pub mod stability;
 #[doc(hidden)]
 pub mod tradeoff;
+#[doc(hidden)]
+pub mod verdict;

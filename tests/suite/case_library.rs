@@ -18,7 +18,7 @@ use fringe::accumulate::fidelity::Fidelity;
 use fringe::harness::case::load::{self, limits};
 use fringe::harness::case::run;
 use fringe::harness::case::spec;
-use fringe::output::report;
+use fringe::harness::verdict;
 use serde::de::DeserializeOwned;
 use serde_json::{Value, json};
 use std::collections::BTreeSet;
@@ -108,7 +108,7 @@ fn every_library_case_passes() {
         for x in non_finite(&result) {
             failures.push(format!("{name}: non-finite value {x}"));
         }
-        let rows = report::rows(&result);
+        let rows = verdict::rows(&result);
         for row in &rows {
             if row.pass == Some(false) || row.max_abs_dev.is_nan() || row.rms_dev.is_nan() {
                 failures.push(format!(
@@ -166,9 +166,11 @@ fn every_library_case_passes() {
         match std::fs::read_to_string(&golden) {
             Err(e) => failures.push(format!("{name}: {}: {e}", golden.display())),
             Ok(text) => {
-                if let Err(e) =
-                    report::compare_golden(&result, &text, report::golden_tolerance(&case, &result))
-                {
+                if let Err(e) = verdict::compare_golden(
+                    &result,
+                    &text,
+                    verdict::golden_tolerance(&case, &result),
+                ) {
                     failures.push(format!("{name}: golden {}: {e:?}", golden.display()));
                 }
             }

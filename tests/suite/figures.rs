@@ -189,7 +189,7 @@ fn small_report() -> (tempfile::TempDir, PathBuf, check::CheckOutcome) {
         format: Format::Table,
         bless: false,
     };
-    let outcome = check::check(&opts).unwrap_or_else(|e| panic!("{}", e.0));
+    let outcome = fringe::cli::check(&opts).unwrap_or_else(|e| panic!("{}", e.0));
     (dir, out, outcome)
 }
 

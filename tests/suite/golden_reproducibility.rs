@@ -2,12 +2,12 @@
 //! committed goldens by 1.5–1.9e-10 on an Intel machine (blessed on AMD). Traced output is not
 //! bit-reproducible across libm implementations, so the golden comparison uses the case's
 //! tolerance or its values' conditioning bound, whichever is larger
-//! (`report::golden_tolerance`: 2 Φ ε u for phases up to Φ). A different CPU is simulated by a
+//! (`verdict::golden_tolerance`: 2 Φ ε u for phases up to Φ). A different CPU is simulated by a
 //! different rounding of the inputs: every probe coordinate moved by one ulp must stay within
 //! the tolerance, while a physical change of 1 nm must not.
 
 use fringe::harness::case::{load, run};
-use fringe::output::report;
+use fringe::harness::verdict;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
 
@@ -32,12 +32,12 @@ fn move_probe(v: &mut Value, f: &dyn Fn(f64) -> f64) {
     }
 }
 
-fn golden_deviation(case: &load::Case) -> (Result<f64, report::GoldenError>, f64) {
+fn golden_deviation(case: &load::Case) -> (Result<f64, verdict::GoldenError>, f64) {
     let r = run::run_with(case, false).unwrap();
     let text =
         std::fs::read_to_string(root().join(format!("golden/{}.csv", case.spec.name))).unwrap();
-    let tol = report::golden_tolerance(case, &r);
-    (report::compare_golden(&r, &text, tol), tol)
+    let tol = verdict::golden_tolerance(case, &r);
+    (verdict::compare_golden(&r, &text, tol), tol)
 }
 
 #[test]
@@ -68,7 +68,7 @@ fn goldens_hold_to_their_conditioning_and_catch_physical_changes() {
         });
         let (dev, tol) = golden_deviation(&shifted);
         assert!(
-            matches!(dev, Err(report::GoldenError::Mismatch(_))),
+            matches!(dev, Err(verdict::GoldenError::Mismatch(_))),
             "{name}: a 1 nm shift passes: {dev:?} (tolerance {tol:e})"
         );
     }
@@ -83,7 +83,7 @@ fn goldens_hold_to_their_conditioning_and_catch_physical_changes() {
 fn a_vanishing_profile_is_compared_on_an_absolute_scale() {
     let case = case_with("brewster_extinction", &|_| {});
     let r = run::run_with(&case, false).unwrap();
-    let text = report::golden_csv(&r);
+    let text = verdict::golden_csv(&r);
     let mut noisy = r.clone();
     for m in &mut noisy.metrics {
         for t in m.traced.values_mut() {
@@ -92,13 +92,13 @@ fn a_vanishing_profile_is_compared_on_an_absolute_scale() {
             }
         }
     }
-    let tol = report::golden_tolerance(&case, &r);
-    assert!(report::compare_golden(&noisy, &text, tol).is_ok());
+    let tol = verdict::golden_tolerance(&case, &r);
+    assert!(verdict::compare_golden(&noisy, &text, tol).is_ok());
     let mut changed = r.clone();
     let t = changed.metrics[0].traced.values_mut().next().unwrap();
     t[0] = 1e-6;
     assert!(matches!(
-        report::compare_golden(&changed, &text, tol),
-        Err(report::GoldenError::Mismatch(_))
+        verdict::compare_golden(&changed, &text, tol),
+        Err(verdict::GoldenError::Mismatch(_))
     ));
 }

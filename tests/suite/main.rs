@@ -28,6 +28,7 @@ mod grade;
 mod input_classes;
 mod interaction_props;
 mod invariance;
+mod layers;
 mod material;
 mod output_safety;
 mod path_solver;

@@ -12,7 +12,7 @@
 
 use fringe::harness::case::load;
 use fringe::harness::case::run;
-use fringe::output::report;
+use fringe::harness::verdict;
 use proptest::prelude::*;
 use serde_json::Value;
 use std::path::{Path, PathBuf};
@@ -125,14 +125,14 @@ proptest! {
             let line = format!("{c:?}");
             prop_assert!(!line.contains("NaN") && !line.contains("inf"), "{file}: convergence row {line}");
         }
-        for row in report::rows(&r) {
+        for row in verdict::rows(&r) {
             prop_assert!(
                 row.max_abs_dev.is_finite() && row.rms_dev.is_finite()
                     && row.tolerance.is_none_or(f64::is_finite),
                 "{file}: report row {row:?}\n{text}"
             );
         }
-        let csv = report::golden_csv(&r);
+        let csv = verdict::golden_csv(&r);
         prop_assert!(!csv.contains("NaN") && !csv.contains("inf"), "{file}: golden CSV has a non-finite value");
     }
 }

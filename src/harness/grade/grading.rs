@@ -15,7 +15,7 @@ use crate::accumulate::fidelity::Fidelity;
 use crate::harness::case::load;
 use crate::harness::case::run::{self, CaseResult, MetricResult};
 use crate::harness::check::{self, CheckOptions, Format, InputError};
-use crate::output::report::{self, Row};
+use crate::harness::verdict::Row;
 use serde::Serialize;
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
@@ -177,8 +177,8 @@ pub fn run_case(case: &str, cases_dir: &Path) -> Result<(load::Case, CaseResult)
     Ok((c, r))
 }
 
-/// Grade a value file; writes `OUT/grade/<case>/grade.json` and `values_profile.csv` and
-/// refreshes `OUT/index.html` only when the input is valid.
+/// Grade a value file; writes `OUT/grade/<case>/grade.json` and `values_profile.csv` only
+/// when the input is valid (the command, `fringe::cli::grade`, then refreshes the report page).
 pub fn grade(opts: &GradeOptions) -> Result<GradeOutcome, InputError> {
     let (case, result) = run_case(&opts.case, &opts.cases_dir)?;
     let qs = quantities(&result, &case.spec.probe);
@@ -222,7 +222,6 @@ pub fn grade(opts: &GradeOptions) -> Result<GradeOutcome, InputError> {
     let p = dir.join("values_profile.csv");
     crate::io::write_atomic(&p, profile_csv(&result, &qs, &vals).as_bytes())
         .map_err(|e| io(&p, e))?;
-    report::html::write_index(&opts.out).map_err(InputError)?;
     Ok(outcome)
 }
 

@@ -551,7 +551,8 @@ pub fn summary_markdown(rows: &[Summary]) -> String {
 }
 
 /// Run the whole study and write `OUT/models/models.csv` (every grid row), `summary.csv` and
-/// `summary.md` (the error table); returns the table as Markdown.
+/// `summary.md` (the error table); returns the table as Markdown. The command
+/// (`fringe::cli::models`) then refreshes the report page, which shows the table.
 pub fn write(out: &std::path::Path) -> Result<String, String> {
     let rows = run(&STACKS);
     let sums = summarize(&rows);
@@ -566,7 +567,5 @@ pub fn write(out: &std::path::Path) -> Result<String, String> {
         crate::io::write_atomic(&p, text.as_bytes())
             .map_err(|e| format!("{}: cannot write: {e}", p.display()))?;
     }
-    // The report page shows the table (src/output/report/renderers.rs).
-    crate::output::report::html::write_index(out)?;
     Ok(md)
 }
