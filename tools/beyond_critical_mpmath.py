@@ -36,6 +36,7 @@ import mpmath as mp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from airy_mpmath import airy, coeffs  # noqa: E402
+from mp_two_beam import intensity_at, landing  # noqa: E402
 
 mp.mp.dps = 50
 
@@ -56,41 +57,15 @@ def loader_normalize(x, y, z):
     return x * inv, y * inv, z * inv
 
 
-def fresnel(n1, n2, ci):
-    ct = mp.sqrt(1 - (n1 / n2) ** 2 * (1 - ci * ci))  # +i sqrt(..) beyond the critical angle
-    rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct)
-    rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct)
-    ts = 2 * n1 * ci / (n1 * ci + n2 * ct)
-    tp = 2 * n1 * ci / (n2 * ci + n1 * ct)
-    return rs, rp, ts, tp
-
-
 def two_beam(n1, n2, d, hs, ho, x, lam):
     """I = 1/2 |r12s e^{i phi1} + a2s e^{i phi2}|^2 + 1/2 (|r12p|^2 + |a2p|^2
     + 2 Re(r12p conj(a2p) e^{i(phi1 - phi2)}) cos(t1 - t2)), complex r12."""
     n1, n2, d, hs, ho, x, lam = map(mp.mpf, (n1, n2, d, hs, ho, x, lam))
     ac = n2 * hs / mp.sqrt(n1 * n1 - n2 * n2) if n1 > n2 else x
 
-    def land(a):
-        st = n1 / n2 * a / mp.sqrt(a * a + hs * hs)
-        return a + 2 * d * st / mp.sqrt(1 - st * st) + ho * a / hs - x
-
+    land = landing(n1, n2, d, hs, ho, x)
     a = mp.findroot(land, (mp.mpf(0), min(x, ac * (1 - mp.mpf(10) ** -40))), solver="anderson")
-    l1 = mp.sqrt(a * a + hs * hs)
-    st = n1 / n2 * a / l1
-    ct = mp.sqrt(1 - st * st)
-    xe = a + 2 * d * st / ct
-    op2 = n1 * l1 + 2 * n2 * d / ct + n1 * mp.sqrt((x - xe) ** 2 + ho * ho)
-    op1 = n1 * mp.sqrt(x * x + (hs + ho) ** 2)
-    r12s, r12p, _, _ = fresnel(n1, n2, (hs + ho) / mp.sqrt(x * x + (hs + ho) ** 2))
-    _, _, t12s, t12p = fresnel(n1, n2, hs / l1)
-    r23s, r23p, t21s, t21p = fresnel(n2, n1, ct)
-    a2s, a2p = t12s * r23s * t21s, t12p * r23p * t21p
-    e = mp.expjpi(2 * (op1 - op2) / lam)
-    overlap = mp.cos(mp.atan2(x, hs + ho) - mp.atan2(a, hs))
-    i_s = abs(r12s * e + a2s) ** 2
-    i_p = abs(r12p) ** 2 + abs(a2p) ** 2 + 2 * mp.re(r12p * mp.conj(a2p) * e) * overlap
-    return (i_s + i_p) / 2
+    return intensity_at(n1, n2, d, hs, ho, x, lam, a)[0]
 
 
 # (name, n1, n2, thickness_m, h_src_m, h_obs_m, lambda_m, [x_m ...]): the scene of

@@ -16,27 +16,15 @@ Inputs are written with repr() and read back exactly.
 Run: python3 tools/beyond_critical_plate_mpmath.py > tests/data/beyond_critical_plate_mpmath.csv
 """
 import mpmath as mp
+from mp_two_beam import intensity_at, landing
 
 mp.mp.dps = 50
-
-
-def fresnel(n1, n2, ci):
-    st2 = (n1 / n2) ** 2 * (1 - ci * ci)
-    ct = mp.sqrt(1 - st2)  # +i sqrt(st2 - 1) beyond the critical angle
-    rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct)
-    rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct)
-    ts = 2 * n1 * ci / (n1 * ci + n2 * ct)
-    tp = 2 * n1 * ci / (n2 * ci + n1 * ct)
-    return rs, rp, ts, tp, ct
 
 
 def intensity(n1, n2, d, hs, ho, x, lam):
     N1, N2, D, HS, HO, X, LAM = map(mp.mpf, (n1, n2, d, hs, ho, x, lam))
 
-    def land(a):
-        l1 = mp.sqrt(a * a + HS * HS)
-        st = N1 / N2 * a / l1
-        return a + 2 * D * st / mp.sqrt(1 - st * st) + HO * a / HS - X
+    land = landing(N1, N2, D, HS, HO, X)
 
     hi = X if N1 <= N2 else min(X, N2 * HS / mp.sqrt(N1 * N1 - N2 * N2))
     lo = mp.mpf(0)
@@ -48,27 +36,7 @@ def intensity(n1, n2, d, hs, ho, x, lam):
         else:
             lo = m
     a = (lo + hi) / 2
-    l1 = mp.sqrt(a * a + HS * HS)
-    st = N1 / N2 * a / l1
-    ct = mp.sqrt(1 - st * st)
-    xe = a + 2 * D * st / ct
-    l3 = mp.sqrt((X - xe) ** 2 + HO * HO)
-    op2 = N1 * l1 + 2 * N2 * D / ct + N1 * l3
-    op1 = N1 * mp.sqrt(X * X + (HS + HO) ** 2)
-    ci1 = (HS + HO) / mp.sqrt(X * X + (HS + HO) ** 2)
-    ci2 = HS / l1
-    r12s, r12p, _, _, _ = fresnel(N1, N2, ci1)
-    _, _, t12s, t12p, _ = fresnel(N1, N2, ci2)
-    r23s, r23p, t21s, t21p, _ = fresnel(N2, N1, ct)
-    A1s, A1p = r12s, r12p
-    A2s, A2p = t12s * r23s * t21s, t12p * r23p * t21p
-    e = mp.expjpi(2 * (op1 - op2) / LAM)
-    th1 = mp.atan2(X, HS + HO)
-    th2 = mp.atan2(a, HS)
-    i_s = abs(A1s * e + A2s) ** 2
-    i_p = abs(A1p) ** 2 + abs(A2p) ** 2 + 2 * mp.re(A1p * mp.conj(A2p) * e) * mp.cos(th1 - th2)
-    tan_t = st / ct
-    return (i_s + i_p) / 2, tan_t
+    return intensity_at(N1, N2, D, HS, HO, X, LAM, a)
 
 
 # (n1, n2, d, h_s, h_o, x, lambda): the shrunk fuzz scene 122 of `fringe fuzz --family

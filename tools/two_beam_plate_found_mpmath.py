@@ -9,42 +9,16 @@ and wavelength as the loader forms them (thickness_um * 1e-6, wavelength_nm * 1e
 Run: python3 tools/two_beam_plate_found_mpmath.py
 """
 import mpmath as mp
+from mp_two_beam import intensity_at, landing
 
 mp.mp.dps = 50
 M = mp.mpf
 
 
-def fresnel(n1, n2, ci):
-    ct = mp.sqrt(1 - (n1 / n2) ** 2 * (1 - ci * ci))
-    rs = (n1 * ci - n2 * ct) / (n1 * ci + n2 * ct)
-    rp = (n2 * ci - n1 * ct) / (n2 * ci + n1 * ct)
-    ts = 2 * n1 * ci / (n1 * ci + n2 * ct)
-    tp = 2 * n1 * ci / (n2 * ci + n1 * ct)
-    return rs, rp, ts, tp
-
-
 def intensity(n1, n2, d, hs, ho, x, lam):
-    def land(a):
-        st = n1 / n2 * a / mp.sqrt(a * a + hs * hs)
-        return a + 2 * d * st / mp.sqrt(1 - st * st) + ho * a / hs - x
-
+    land = landing(n1, n2, d, hs, ho, x)
     a = mp.findroot(land, (M(0), x), solver="anderson")
-    l1 = mp.sqrt(a * a + hs * hs)
-    st = n1 / n2 * a / l1
-    ct = mp.sqrt(1 - st * st)
-    xe = a + 2 * d * st / ct
-    op2 = n1 * l1 + 2 * n2 * d / ct + n1 * mp.sqrt((x - xe) ** 2 + ho * ho)
-    op1 = n1 * mp.sqrt(x * x + (hs + ho) ** 2)
-    r12s, r12p, _, _ = fresnel(n1, n2, (hs + ho) / mp.sqrt(x * x + (hs + ho) ** 2))
-    _, _, t12s, t12p = fresnel(n1, n2, hs / l1)
-    r23s, r23p, t21s, t21p = fresnel(n2, n1, ct)
-    a2s, a2p = t12s * r23s * t21s, t12p * r23p * t21p
-    e = mp.expjpi(2 * (op1 - op2) / lam)
-    overlap = mp.cos(mp.atan2(x, hs + ho) - mp.atan2(a, hs))
-    i_s = abs(r12s * e + a2s) ** 2
-    i_p = r12p**2 + a2p**2 + 2 * mp.re(r12p * a2p * e) * overlap
-    return (i_s + i_p) / 2
-
+    return intensity_at(n1, n2, d, hs, ho, x, lam, a)[0]
 
 def scene(normal, top, source, probes, n1, n2, thickness_um, wavelength_nm):
     nn = [M(v) for v in normal]
