@@ -11,7 +11,7 @@ use crate::output::{figures, report};
 use rayon::prelude::*;
 use std::path::Path;
 
-/// `fringe check`: evaluate the cases ([`check::evaluate`]), then write the reports (each
+/// `fringe check`: evaluate the cases (`check::evaluate`), then write the reports (each
 /// file atomically, one run at a time per `--out`), the paper's figures when the whole library
 /// runs, the report page, and with `--bless` the golden files of a passing run as one set.
 pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {

@@ -5,8 +5,8 @@
 //! - every file is written atomically ([`write_atomic`]: a temporary `.fringe-tmp-*` file in
 //!   the same folder, synced, then renamed over the old one), so each file is complete-old or
 //!   complete-new; a leftover temporary file is removed by the next run that writes there
-//!   ([`remove_stale_temp_files`]);
-//! - the golden files of one `--bless` are one set ([`bless_set`]): staged in
+//!   (`remove_stale_temp_files`);
+//! - the golden files of one `--bless` are one set (`bless_set`): staged in
 //!   `<golden>/.fringe-bless/`, made durable, committed by a `COMMIT` list, then renamed into
 //!   place. A kill before the commit leaves the old set (the next run deletes the stage); a kill
 //!   after it is rolled forward by the next run ([`recover_bless`]), so every run reads one
@@ -18,10 +18,10 @@
 use std::path::Path;
 
 /// Prefix of the temporary files of [`write_atomic`].
-pub const TEMP_PREFIX: &str = ".fringe-tmp-";
+pub(crate) const TEMP_PREFIX: &str = ".fringe-tmp-";
 
 /// Folder (inside the golden folder) where a bless stages its set, and its commit mark.
-pub const BLESS_STAGE: &str = ".fringe-bless";
+pub(crate) const BLESS_STAGE: &str = ".fringe-bless";
 const BLESS_COMMIT: &str = "COMMIT";
 
 /// Write `bytes` to `path` atomically, creating the parent folder.
@@ -49,7 +49,7 @@ pub fn write_atomic(path: &Path, bytes: &[u8]) -> std::io::Result<()> {
 
 /// Make `dir` (created if absent) and show that a file can be written in it, before any work
 /// whose results would go there. Leaves at most the (empty) folder behind.
-pub fn probe_writable(dir: &Path) -> std::io::Result<()> {
+pub(crate) fn probe_writable(dir: &Path) -> std::io::Result<()> {
     std::fs::create_dir_all(dir)?;
     let mut tmp = tempfile::Builder::new()
         .prefix(TEMP_PREFIX)
@@ -72,7 +72,7 @@ pub fn lock_dir(dir: &Path) -> std::io::Result<std::fs::File> {
 /// Remove leftover temporary files of interrupted atomic writes in `dir` (not recursive):
 /// `.fringe-tmp-*`, and `.tmp*` of versions before the prefix. Call it holding [`lock_dir`].
 /// Returns how many were removed.
-pub fn remove_stale_temp_files(dir: &Path) -> std::io::Result<usize> {
+pub(crate) fn remove_stale_temp_files(dir: &Path) -> std::io::Result<usize> {
     let Ok(rd) = std::fs::read_dir(dir) else {
         return Ok(0);
     };
@@ -94,7 +94,7 @@ fn sync_dir(dir: &Path) -> std::io::Result<()> {
     std::fs::File::open(dir)?.sync_all()
 }
 
-/// Finish or undo an interrupted [`bless_set`] in `golden_dir`: with a commit mark, rename the
+/// Finish or undo an interrupted `bless_set` in `golden_dir`: with a commit mark, rename the
 /// staged files into place (roll forward); without one, delete the stage (roll back). Also
 /// removes stale temporary files. Call it holding [`lock_dir`] on `golden_dir`. Returns whether
 /// there was anything to recover.
@@ -120,7 +120,7 @@ pub fn recover_bless(golden_dir: &Path) -> std::io::Result<bool> {
 /// Write the golden files `files` (file name, text) into `golden_dir` as one set: stage every
 /// file (synced), commit the list, then rename each into place (see the module docs for what a
 /// kill leaves). Call it holding [`lock_dir`] on `golden_dir`.
-pub fn bless_set(golden_dir: &Path, files: &[(String, String)]) -> std::io::Result<()> {
+pub(crate) fn bless_set(golden_dir: &Path, files: &[(String, String)]) -> std::io::Result<()> {
     recover_bless(golden_dir)?;
     let stage = golden_dir.join(BLESS_STAGE);
     std::fs::create_dir_all(&stage)?;

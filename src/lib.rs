@@ -52,21 +52,38 @@
 //!
 //! # Layout
 //!
-//! The modules are grouped by layer, each using the layers before it:
+//! The modules are grouped by layer, each using only the layers before it (the test
+//! `layers::every_layer_uses_only_the_layers_before_it` reads the sources and fails on an
+//! upward use):
 //!
+//! * [`io`]: atomic files, folder locks, bless sets, CSV text (knows nothing of optics);
 //! * [`optics`]: pure kernels — Fresnel coefficients, media, the polarized ray and its ledger,
 //!   a ray meeting an interface, observables, double-double optical paths;
 //! * [`scene`]: planes and the surfaces built from them, sources;
 //! * [`accumulate`]: the accumulation core and the fidelity ladder;
 //! * [`trace`]: the exact path solver, sequence enumeration, arrivals, forward fans, spectral
 //!   beat terms (it builds the accumulation core's contributions, so it comes after it);
-//! * [`harness`]: case files, closed forms, the gate, and (hidden: not a stable API) the
-//!   stability sweep, fuzzing, grading and the cost studies;
-//! * [`output`]: pictures and colour, and (hidden) reports and figures.
+//! * [`colour`]: spectra → CIE XYZ → sRGB, CIEDE2000, Newton's colours;
+//! * [`harness`]: case files, closed forms, the gate's evaluation and verdict, the stability
+//!   sweep, fuzzing, grading and the cost studies;
+//! * [`output`]: pictures, reports and figures;
+//! * [`cli`]: the commands of the `fringe` binary, which run the harness and write through the
+//!   outputs.
 //!
-//! Known exceptions, kept until the file helpers move down: the harness writes its CSV and
-//! files through `output::report` (`csv_text`, `write_atomic`), and `check` runs the figures.
+//! # The embedding API and the tool's modules
 //!
+//! A renderer that embeds fringe needs [`optics`], [`scene`], [`trace`] and [`accumulate`]
+//! (the types it names most are also at the crate root), [`colour`] to turn spectra into
+//! colours, and for the case library [`harness::case`] (load, build and run a case file) with
+//! the closed forms of [`harness::analytic`]. These are documented and kept stable.
+//!
+//! The rest serves the `fringe` tool: [`cli`], [`output`] (pictures with `output::render`;
+//! the report and figures are hidden), [`io`], and the harness modules hidden from these docs
+//! (the gate and its verdict, the stability sweep, fuzzing, grading, the cost studies). They
+//! are public only because the binary and the integration tests (separate crates) use them;
+//! what neither uses is `pub(crate)` or private. Count of the public items (rustdoc JSON,
+//! hidden items included): `tools/count_pub_items.py`.
+
 //! # Example: a glass plate against the Airy formula
 //!
 //! A free-standing glass plate (n = 1.5, 2 µm thick) in vacuum, lit by an s-polarized plane
@@ -156,11 +173,11 @@
 
 #![warn(missing_docs)]
 
-// The embedding API is the optics, the scene, the tracer, accumulation, observables, closed
-// forms and case files: every public item is documented (`missing_docs` above, crate-wide).
-// The harness behind the `fringe` binary (the gate, reports, sweeps, figures, fuzzing,
-// grading) is public only for that binary and the integration tests: `#[doc(hidden)]`, not a
-// stable API; what neither needs is private.
+// The embedding API is the optics, the scene, the tracer, accumulation, colour, observables,
+// closed forms and case files: every public item is documented (`missing_docs` above,
+// crate-wide). The harness behind the `fringe` binary (the gate, reports, sweeps, figures,
+// fuzzing, grading) is public only for that binary and the integration tests:
+// `#[doc(hidden)]`, not a stable API; what neither needs is `pub(crate)` or private.
 
 // What an embedding renderer needs most, at the crate root (the modules hold the rest).
 pub use crate::accumulate::fidelity::{AutoChoice, Fidelity};

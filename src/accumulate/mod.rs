@@ -580,11 +580,6 @@ impl Accumulator {
                 .collect()
         })
     }
-
-    /// Σ |E|² of the incoherent (id 0) contributions.
-    pub fn incoherent_intensity(&self) -> f64 {
-        self.incoherent.value()
-    }
 }
 
 /// Intensity of a set of contributions at one point.

@@ -27,7 +27,7 @@ pub struct CheckOptions {
     pub cases: Vec<String>,
     /// The case library folder (default [`library_root`]`/cases`).
     pub cases_dir: PathBuf,
-    /// The golden folder of every case; `None`: [`golden_dir_for`] (the library's `golden/`
+    /// The golden folder of every case; `None`: `golden_dir_for` (the library's `golden/`
     /// for library cases, a `golden/` folder beside any other case file).
     pub golden_dir: Option<PathBuf>,
     /// Output folder of the reports.
@@ -73,7 +73,7 @@ pub fn library_root() -> PathBuf {
 /// library (`<cases_dir>/../golden`) for a case of the library `cases_dir`, and `golden/` in the
 /// case file's own folder for any other case file (`path/to/case.json` →
 /// `path/to/golden/<name>.csv`).
-pub fn golden_dir_for(opts: &CheckOptions, file: &Path) -> PathBuf {
+pub(crate) fn golden_dir_for(opts: &CheckOptions, file: &Path) -> PathBuf {
     if let Some(g) = &opts.golden_dir {
         return g.clone();
     }
@@ -322,7 +322,7 @@ fn bless_command(opts: &CheckOptions, file: &Path, name: &str) -> String {
 /// What a check computed before anything is written: the loaded cases and their results (in
 /// file order), each case's work units, the verdict rows (cases, then the stability sweep), the
 /// golden files a `--bless` would write, and the stability sweep.
-pub struct Evaluation {
+pub(crate) struct Evaluation {
     /// The cases, in the order of their files.
     pub cases: Vec<Case>,
     /// Each case's result.
@@ -343,7 +343,7 @@ pub struct Evaluation {
 /// writes are writable, run the cases and the stability sweep, and compare with the closed
 /// forms and the golden files. Writes nothing but the recovery of an interrupted bless: the
 /// reports and a bless are written by the command layer (`fringe::cli::check`).
-pub fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
+pub(crate) fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
     let files = resolve(opts)?;
     let cases: Vec<Case> = files
         .iter()

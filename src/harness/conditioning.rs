@@ -46,10 +46,10 @@ use num_complex::Complex64;
 use std::collections::BTreeMap;
 
 /// Unit roundoff of f64, u = 2⁻⁵³.
-pub const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
+pub(crate) const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
 
 /// Roundings per quantity the bound allows (module docs).
-pub const ROUNDINGS: f64 = 8.0;
+pub(crate) const ROUNDINGS: f64 = 8.0;
 
 /// The path solver's finite-difference step of the launch parameters (`path::LaunchModel`'s
 /// step for point sources, radians).
@@ -193,7 +193,7 @@ pub fn intensity_rounding(
 /// The derived tolerance of an intensity profile: the largest per-point bound relative to the
 /// profile's scale (the largest |reference|, as [`crate::harness::case::run::MetricResult::deviations`]
 /// divides), never below `floor`.
-pub fn relative_tolerance(rounding: &[f64], analytic: &[f64], floor: f64) -> f64 {
+pub(crate) fn relative_tolerance(rounding: &[f64], analytic: &[f64], floor: f64) -> f64 {
     let scale = analytic.iter().fold(1e-15f64, |m, a| m.max(a.abs()));
     rounding.iter().fold(floor, |m, r| m.max(r / scale))
 }

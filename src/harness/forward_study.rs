@@ -162,7 +162,7 @@ pub fn plate_scene(
 }
 
 /// The exact image at pixel centres (spreading on), row-major, at `level`.
-pub fn exact_image_at(s: &StudyScene, level: Fidelity) -> Vec<f64> {
+pub(crate) fn exact_image_at(s: &StudyScene, level: Fidelity) -> Vec<f64> {
     let optics = s.scene.optics(s.lambda_m).expect("constant indices");
     let [nx, ny] = s.screen.pixels;
     let lim = EnumerationLimits {
@@ -194,7 +194,7 @@ pub fn exact_image(s: &StudyScene) -> Vec<f64> {
 }
 
 /// Relative RMS and max error of `img` against `exact`, normalised by `scale`.
-pub fn errors_scaled(img: &[f64], exact: &[f64], scale: f64) -> (f64, f64) {
+pub(crate) fn errors_scaled(img: &[f64], exact: &[f64], scale: f64) -> (f64, f64) {
     let scale = scale.max(f64::MIN_POSITIVE);
     let mut max = 0.0f64;
     let mut sum2 = 0.0;

@@ -271,7 +271,7 @@ pub fn measure(case: &Case, repeats: usize) -> Vec<TradeoffRow> {
 /// The deterministic cost order of two traced settings: path events, then the simpler rung,
 /// then fewer internal reflections, then fewer spectral samples. `None` if either was not
 /// traced.
-pub fn cost_order(a: &TradeoffRow, b: &TradeoffRow) -> Option<Ordering> {
+pub(crate) fn cost_order(a: &TradeoffRow, b: &TradeoffRow) -> Option<Ordering> {
     let (ma, mb) = (a.measurement()?, b.measurement()?);
     Some(
         ma.path_events
@@ -283,7 +283,7 @@ pub fn cost_order(a: &TradeoffRow, b: &TradeoffRow) -> Option<Ordering> {
 }
 
 /// The cheapest setting meeting the tolerance, by the deterministic cost order
-/// ([`cost_order`]); wall times play no part.
+/// (`cost_order`); wall times play no part.
 pub fn cheapest(rows: &[TradeoffRow]) -> Option<&TradeoffRow> {
     rows.iter()
         .filter(|r| r.meets_tolerance())

@@ -116,7 +116,7 @@ pub fn rows(r: &CaseResult) -> Vec<Row> {
 }
 
 /// `profile.csv`: per reference, coordinate, analytic, then traced and deviation per level.
-pub fn profile_csv(r: &CaseResult) -> String {
+pub(crate) fn profile_csv(r: &CaseResult) -> String {
     let levels = &r.levels;
     let mut header: Vec<String> = ["reference", "quantity", "coordinate", "analytic"]
         .map(String::from)
@@ -152,7 +152,7 @@ pub fn profile_csv(r: &CaseResult) -> String {
 }
 
 /// `convergence.csv` of Airy cases.
-pub fn convergence_csv(r: &CaseResult) -> String {
+pub(crate) fn convergence_csv(r: &CaseResult) -> String {
     csv_text(
         &[
             "orders",
@@ -363,7 +363,7 @@ pub fn golden_tolerance(case: &crate::harness::case::load::Case, r: &CaseResult)
 
 /// The summary of one case for `summary.json`.
 #[derive(Serialize)]
-pub struct CaseSummary<'a> {
+pub(crate) struct CaseSummary<'a> {
     pub case: &'a str,
     pub description: &'a str,
     pub formula: &'a str,
@@ -383,7 +383,7 @@ pub struct CaseSummary<'a> {
 
 /// A single-valued metric of a case: its closed form and what every level traced.
 #[derive(Serialize)]
-pub struct PointValue {
+pub(crate) struct PointValue {
     /// The reference's name in the case file.
     pub metric: String,
     /// What is measured, with its unit (e.g. "retardance arg E_p − arg E_s (rad)").
@@ -395,7 +395,7 @@ pub struct PointValue {
 }
 
 /// The [`PointValue`]s of a case result: every metric evaluated at a single coordinate.
-pub fn point_values(r: &CaseResult) -> Vec<PointValue> {
+pub(crate) fn point_values(r: &CaseResult) -> Vec<PointValue> {
     r.metrics
         .iter()
         .filter(|m| m.analytic.len() == 1)

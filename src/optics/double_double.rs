@@ -5,7 +5,7 @@
 //! absolute path summed in f64 loses ~1e-14 m there (~1e-7 rad of phase), while the fringes
 //! depend only on path *differences* of a few µm. fringe therefore carries every optical path as
 //! a [`DoubleDouble`] (docs/PHYSICS.md §1, "Precision"): segment lengths are formed from the f64 hit
-//! points with exact coordinate differences ([`segment_length`]), the far-field wavefront
+//! points with exact coordinate differences (`segment_length`), the far-field wavefront
 //! projection n d·(x − reference) with exact differences and products ([`projection`]), sums
 //! with Knuth's TwoSum, and differences of paths to the same point in double-double before they
 //! are rounded to f64 cycles. The points themselves stay f64: by Fermat's principle the optical
@@ -50,7 +50,7 @@ fn fast_two_sum(a: f64, b: f64) -> DoubleDouble {
 
 /// a − b exactly as hi + lo (TwoSum of a and −b): the exact difference of two coordinates.
 #[inline(always)]
-pub fn two_diff(a: f64, b: f64) -> DoubleDouble {
+pub(crate) fn two_diff(a: f64, b: f64) -> DoubleDouble {
     two_sum(a, -b)
 }
 
@@ -223,7 +223,7 @@ fn difference(a: DVec3, b: DVec3) -> [DoubleDouble; 3] {
 /// exact, their squares and sum double-double, so the length of a 100 m segment keeps ~1e-30 m
 /// (relative ~1e-31), far below what rounding the points themselves does to a path.
 #[inline]
-pub fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
+pub(crate) fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
     // Each square (h + l)² = TwoProd(h, h) + 2hl (l² < 2⁻¹⁰⁶ h² is below the format); the three
     // are positive, so the sum needs no cancellation-proof addition: two TwoSums of the high
     // parts, the low parts added in f64 (relative error a few 2⁻¹⁰⁴).

@@ -113,7 +113,7 @@ pub fn fresnel(n1: f64, n2: f64, cos_theta_i: f64) -> FresnelCoefficients {
 /// [`fresnel`] with cos²θt given (negative under total internal reflection): for a caller that
 /// knows it better than [`cos2_theta_t`] can form it from an f64 cos θi (the tracer's normal
 /// wavevector carried in double-double between parallel faces, docs/PHYSICS.md §8).
-pub fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> FresnelCoefficients {
+pub(crate) fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> FresnelCoefficients {
     let total_internal_reflection = c2t < 0.0;
     // Evanescent branch: cos θt = +i sqrt(-cos²θt) for the e^{-iωt} convention.
     let cos_t = if total_internal_reflection {
@@ -207,7 +207,7 @@ pub fn ideal_mirror() -> FresnelCoefficients {
 /// no deviation): seen from the front (the side the normal points to) it reflects like an
 /// attenuated perfect mirror, r_s = −√R, r_p = +√R; from the back with the opposite signs
 /// (Stokes: r' = −r); t_s = t_p = √(1−R), so t t' − r r' = 1 and R + T = 1.
-pub fn ideal_splitter(reflectance: f64, from_front: bool) -> FresnelCoefficients {
+pub(crate) fn ideal_splitter(reflectance: f64, from_front: bool) -> FresnelCoefficients {
     let r = reflectance.sqrt() * if from_front { 1.0 } else { -1.0 };
     let t = Complex64::from((1.0 - reflectance).sqrt());
     FresnelCoefficients {
@@ -256,7 +256,7 @@ pub fn s_direction(d_i: DVec3, normal: DVec3, fallback: DVec3) -> DVec3 {
 /// The s vector of [`s_direction`] when the plane of incidence is defined (|d_i × N| > 1e-12),
 /// `None` at normal incidence, where only the fallback decides: what every ray of direction
 /// `d_i` shares at this interface, whatever its polarization frame.
-pub fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
+pub(crate) fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
     let n_o = if d_i.dot(normal) < 0.0 {
         normal
     } else {
@@ -270,7 +270,7 @@ pub fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
 
 /// The s vector of [`s_direction`] at normal incidence: `fallback` projected perpendicular to
 /// `d_i` (any perpendicular if it is nearly parallel to `d_i`).
-pub fn s_at_normal_incidence(d_i: DVec3, fallback: DVec3) -> DVec3 {
+pub(crate) fn s_at_normal_incidence(d_i: DVec3, fallback: DVec3) -> DVec3 {
     let f = fallback - fallback.dot(d_i) * d_i;
     if f.length() > 1e-6 {
         f.normalize()

@@ -82,7 +82,12 @@ fn dot(e: &Field3, v: DVec3) -> Complex64 {
 
 /// The (incident-side, far-side) indices for a ray travelling along `dir` in a medium of index
 /// `current` (a mirror has the ray's medium on both sides as far as the ray is concerned).
-pub fn indices_for(optics: SurfaceOptics, normal: DVec3, dir: DVec3, current: f64) -> (f64, f64) {
+pub(crate) fn indices_for(
+    optics: SurfaceOptics,
+    normal: DVec3,
+    dir: DVec3,
+    current: f64,
+) -> (f64, f64) {
     match optics {
         SurfaceOptics::Dielectric { n_front, n_back } => {
             if dir.dot(normal) < 0.0 {
@@ -145,7 +150,12 @@ pub fn normal_wavevector_squares(
 /// cos θt ≥ 0, normalized. The tangential part is formed before it is scaled by η, so for
 /// η ≫ 1 (into a much thinner medium) the normal part is not the small difference of η-sized
 /// terms that η d_i + (η cos θi − cos θt) N_o rounds.
-pub fn snell_direction(d_i: DVec3, normal: DVec3, (n1, n2): (f64, f64), cos_t: f64) -> DVec3 {
+pub(crate) fn snell_direction(
+    d_i: DVec3,
+    normal: DVec3,
+    (n1, n2): (f64, f64),
+    cos_t: f64,
+) -> DVec3 {
     let n_o = if d_i.dot(normal) < 0.0 {
         normal
     } else {
@@ -372,7 +382,7 @@ pub fn interact_along(
 
 /// [`interact_along`] on the ray in place: false, with the ray partly updated, where
 /// [`interact_along`] gives `None`.
-pub fn interact_along_in_place(
+pub(crate) fn interact_along_in_place(
     ray: &mut Ray,
     hit: &InterfaceHit,
     model: CoefficientModel,

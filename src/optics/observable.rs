@@ -9,7 +9,7 @@
 //!
 //! A traced value and a closed form are compared only when they are the same observable:
 //! every probe declares what it measures ([`Observable`]), every closed form what it returns
-//! ([`Returns`]), and [`check_match`] refuses a mismatch before anything is traced.
+//! ([`Returns`]), and `check_match` refuses a mismatch before anything is traced.
 
 use serde::Serialize;
 
@@ -22,7 +22,7 @@ pub enum Observable {
     /// Power reflectance R of a plane wave (dimensionless).
     Reflectance,
     /// Power transmittance T of a plane wave (dimensionless), with the
-    /// (n_out cos θ_out)/(n_in cos θ_in) factor of [`power_factor`].
+    /// (n_out cos θ_out)/(n_in cos θ_in) factor of `power_factor`.
     Transmittance,
 }
 
@@ -36,17 +36,8 @@ impl Observable {
         }
     }
 
-    /// A short column name: `I`, `R` or `T`.
-    pub fn symbol(self) -> &'static str {
-        match self {
-            Observable::FieldIntensity => "I",
-            Observable::Reflectance => "R",
-            Observable::Transmittance => "T",
-        }
-    }
-
     /// Whether this is a power fraction of a plane wave (R or T).
-    pub fn is_power(self) -> bool {
+    pub(crate) fn is_power(self) -> bool {
         !matches!(self, Observable::FieldIntensity)
     }
 }
@@ -59,13 +50,17 @@ pub enum Returns {
     /// A power fraction R or T of a plane wave (which one follows from the probe's side).
     Power,
     /// The field of each beam, turned into whatever the probe measures (the conversion of
-    /// [`power_factor`] applied to the closed form's |E|², independently of the trace).
+    /// `power_factor` applied to the closed form's |E|², independently of the trace).
     AsProbe,
 }
 
 /// Whether a closed form returning `returns` may be compared with a probe measuring `measured`;
 /// the error says what to change.
-pub fn check_match(model: &str, returns: Returns, measured: Observable) -> Result<(), String> {
+pub(crate) fn check_match(
+    model: &str,
+    returns: Returns,
+    measured: Observable,
+) -> Result<(), String> {
     match (returns, measured.is_power()) {
         (Returns::AsProbe, _) | (Returns::FieldIntensity, false) | (Returns::Power, true) => Ok(()),
         (Returns::FieldIntensity, true) => Err(format!(
@@ -85,7 +80,7 @@ pub fn check_match(model: &str, returns: Returns, measured: Observable) -> Resul
 /// power fraction crossing a plane of unit normal `normal`:
 /// `(n_out |d_out·N|)/(n_in |d_in·N|)` (B&W §1.5.3: the energy flux through the boundary is
 /// n cos θ |E|² up to a constant common to both waves). It is 1 for a reflected wave.
-pub fn power_factor(
+pub(crate) fn power_factor(
     n_in: f64,
     d_in: glam::DVec3,
     n_out: f64,

@@ -12,7 +12,6 @@ use crate::optics::double_double::{DoubleDouble, segment_length};
 use crate::optics::trail::Trail;
 use glam::DVec3;
 use num_complex::Complex64;
-use std::fmt::Write as _;
 
 /// A complex 3D field vector (x, y, z components).
 pub type Field3 = [Complex64; 3];
@@ -79,47 +78,10 @@ impl PhaseLedger {
             })
             .sum()
     }
-
-    /// A human-readable account of the phase, one line per entry, at vacuum wavelength `lambda_m`.
-    pub fn explain(&self, lambda_m: f64) -> String {
-        let mut out = String::new();
-        for e in &self.entries {
-            let _ = match e {
-                LedgerEntry::Path { index, length_m } => writeln!(
-                    out,
-                    "path: n = {index:.6}, L = {length_m:.9e} m, n·L = {:.9e} m = {:.6} cycles",
-                    index * length_m,
-                    index * length_m / lambda_m
-                ),
-                LedgerEntry::Reflection {
-                    surface,
-                    r_s,
-                    r_p,
-                    tir,
-                } => writeln!(
-                    out,
-                    "reflection at surface {surface}{}: arg r_s = {:.6} rad, arg r_p = {:.6} rad",
-                    if *tir { " (TIR)" } else { "" },
-                    r_s.arg(),
-                    r_p.arg()
-                ),
-                LedgerEntry::Refraction { surface, t_s, t_p } => writeln!(
-                    out,
-                    "refraction at surface {surface}: arg t_s = {:.6} rad, arg t_p = {:.6} rad",
-                    t_s.arg(),
-                    t_p.arg()
-                ),
-                LedgerEntry::CoherenceLost { surface } => {
-                    writeln!(out, "coherence lost (surface {surface:?})")
-                }
-            };
-        }
-        out
-    }
 }
 
 /// The complex 3D field `J_x X + J_y Y` of the Jones vector `[J_x, J_y]` in the frame (X, Y).
-pub fn field_of(jones: [Complex64; 2], x: DVec3, y: DVec3) -> Field3 {
+pub(crate) fn field_of(jones: [Complex64; 2], x: DVec3, y: DVec3) -> Field3 {
     let [jx, jy] = jones;
     [
         jx * x.x + jy * y.x,
@@ -188,7 +150,7 @@ impl Ray {
 
     /// [`Ray::linear`] with `dir` already normalized (`dir.normalize()` of the direction
     /// [`Ray::linear`] would be given: one normalization serves several rays).
-    pub fn linear_unit(
+    pub(crate) fn linear_unit(
         origin: DVec3,
         dir: DVec3,
         e_dir: DVec3,
@@ -229,12 +191,6 @@ impl Ray {
         self.jones[0].norm_sqr() + self.jones[1].norm_sqr()
     }
 
-    /// The 2×2 coherence (polarization) matrix J J† in the (X, Y) frame.
-    pub fn coherence_matrix(&self) -> [[Complex64; 2]; 2] {
-        let [a, b] = self.jones;
-        [[a * a.conj(), a * b.conj()], [b * a.conj(), b * b.conj()]]
-    }
-
     /// The optical path Σ n_i L_i from the source rounded to f64 (m).
     pub fn optical_path_m(&self) -> f64 {
         self.optical_path.to_f64()
@@ -249,7 +205,7 @@ impl Ray {
     /// (L = |point − origin| in double-double from the exact coordinate differences) and a
     /// ledger entry. `point` must lie ahead on the ray.
     #[inline(always)]
-    pub fn advance_to(&mut self, point: DVec3) {
+    pub(crate) fn advance_to(&mut self, point: DVec3) {
         let length = segment_length(self.origin, point);
         self.optical_path += length.mul_f64(self.index);
         self.ledger.entries.push(LedgerEntry::Path {

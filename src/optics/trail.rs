@@ -85,7 +85,7 @@ impl<T> Trail<T> {
 
     /// An empty owned trail with room for `capacity` elements.
     #[inline]
-    pub fn with_capacity(capacity: usize) -> Self {
+    pub(crate) fn with_capacity(capacity: usize) -> Self {
         Trail(Repr::Owned(Vec::with_capacity(capacity)))
     }
 
@@ -95,7 +95,7 @@ impl<T> Trail<T> {
     }
 
     /// A shared trail of one element.
-    pub fn shared_of(item: T) -> Self {
+    pub(crate) fn shared_of(item: T) -> Self {
         let mut t = Trail::shared();
         t.push(item);
         t
@@ -133,13 +133,6 @@ impl<T> Trail<T> {
                 }));
                 *len += 1;
             }
-        }
-    }
-
-    /// Room for `additional` more elements (owned trails; a shared one has nothing to reserve).
-    pub fn reserve(&mut self, additional: usize) {
-        if let Repr::Owned(v) = &mut self.0 {
-            v.reserve(additional);
         }
     }
 

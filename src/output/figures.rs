@@ -21,12 +21,12 @@ use std::path::Path;
 use std::time::Instant;
 
 /// The Young scene of Fig. 3.
-pub const YOUNG_SCENE: &str = include_str!("../../figures/young_fig3.json");
+pub(crate) const YOUNG_SCENE: &str = include_str!("../../figures/young_fig3.json");
 /// The amplitude-division scene of Figs. 5–8.
 pub const PLATE_SCENE: &str = include_str!("../../figures/plate_amplitude_division.json");
 
 /// The paper's Fig. 8 numbers for its own (unspecified) 900 × 900 scene (§4.2).
-pub const PAPER_FIG8: PaperFig8 = PaperFig8 {
+pub(crate) const PAPER_FIG8: PaperFig8 = PaperFig8 {
     pixels: 810_000,
     differing: 79_041,
     max_sum: 60,
@@ -37,7 +37,7 @@ pub const PAPER_FIG8: PaperFig8 = PaperFig8 {
 
 /// The Fig. 8 statistics as the paper prints them.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize)]
-pub struct PaperFig8 {
+pub(crate) struct PaperFig8 {
     pub pixels: usize,
     pub differing: usize,
     pub max_sum: u32,
@@ -49,17 +49,17 @@ pub struct PaperFig8 {
 /// Spectral sample counts of the colour-error study.
 pub const ERROR_SAMPLES: [usize; 6] = [4, 8, 16, 31, 81, 401];
 /// Uniform grids of the study span the visible range.
-pub const VISIBLE_NM: (f64, f64) = (380.0, 780.0);
+pub(crate) const VISIBLE_NM: (f64, f64) = (380.0, 780.0);
 /// Newton's sequence: soap film index and thickness range (nm).
 pub const NEWTON_N: f64 = 1.33;
-pub const NEWTON_MAX_NM: usize = 1500;
+pub(crate) const NEWTON_MAX_NM: usize = 1500;
 
 /// Settings of a figure run.
 #[derive(Clone, Debug)]
 pub struct FigureOptions {
     /// Picture size (columns, rows) of Figs. 3 and 5–8.
     pub size: (usize, usize),
-    /// White-light samples (uniform over [`VISIBLE_NM`]) of Figs. 5–8.
+    /// White-light samples (uniform over `VISIBLE_NM`) of Figs. 5–8.
     pub samples: usize,
     pub illuminant: Illuminant,
     /// Picture side of the colour-error renders.
@@ -143,14 +143,14 @@ pub fn young_case() -> Result<Case, String> {
     parse_scene("figures/young_fig3.json", YOUNG_SCENE)
 }
 
-/// A uniform white-light grid of `samples` wavelengths over [`VISIBLE_NM`].
+/// A uniform white-light grid of `samples` wavelengths over `VISIBLE_NM`.
 pub fn visible_grid(samples: usize) -> Result<WavelengthGrid, String> {
     WavelengthGrid::uniform(VISIBLE_NM.0 * 1e-9, VISIBLE_NM.1 * 1e-9, samples)
 }
 
 /// The shadings of the plate figures, in order: Fig. 5, Fig. 6 left/right, Fig. 7 right, the
 /// vector reference, and the paper's own Fig. 7 left model (one scalar ray per path).
-pub const PLATE_SHADINGS: [Shading; 6] = [
+pub(crate) const PLATE_SHADINGS: [Shading; 6] = [
     Shading::Level(Fidelity::Incoherent),
     Shading::Level(Fidelity::Scalar),
     Shading::Level(Fidelity::ScalarJump),
@@ -167,7 +167,7 @@ fn xyz_of(im: &Image) -> &[[f64; 3]] {
 }
 
 /// Mean and max CIEDE2000 between two XYZ lists (Lab relative to `white`).
-pub fn delta_e_stats(a: &[[f64; 3]], b: &[[f64; 3]], white: [f64; 3]) -> (f64, f64) {
+pub(crate) fn delta_e_stats(a: &[[f64; 3]], b: &[[f64; 3]], white: [f64; 3]) -> (f64, f64) {
     let mut sum = 0.0;
     let mut max = 0.0f64;
     for (p, q) in a.iter().zip(b) {
@@ -178,7 +178,7 @@ pub fn delta_e_stats(a: &[[f64; 3]], b: &[[f64; 3]], white: [f64; 3]) -> (f64, f
     (sum / a.len().max(1) as f64, max)
 }
 
-/// Newton's sequence in reflection, thickness 0..=[`NEWTON_MAX_NM`] nm in 1 nm steps.
+/// Newton's sequence in reflection, thickness 0..=`NEWTON_MAX_NM` nm in 1 nm steps.
 pub fn newton_thicknesses_m(step_nm: usize) -> Vec<f64> {
     (0..=NEWTON_MAX_NM)
         .step_by(step_nm)

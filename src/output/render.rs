@@ -51,9 +51,9 @@ use rayon::prelude::*;
 use std::time::Instant;
 
 /// Largest picture side `render` accepts (pixels).
-pub const MAX_SIDE: usize = 8192;
+pub(crate) const MAX_SIDE: usize = 8192;
 /// Largest pixel count `render` accepts.
-pub const MAX_PIXELS: usize = 16 * 1024 * 1024;
+pub(crate) const MAX_PIXELS: usize = 16 * 1024 * 1024;
 
 /// How the arrivals at a pixel are turned into an intensity.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -232,7 +232,7 @@ pub struct Request {
 }
 
 /// Whether any medium of the built scene has a wavelength-dependent index.
-pub fn is_dispersive(built: &Built) -> bool {
+pub(crate) fn is_dispersive(built: &Built) -> bool {
     built
         .media
         .values()
@@ -420,7 +420,7 @@ fn plan_targets(g: &GridGeometry) -> Vec<DVec3> {
 /// Peak memory of a render and of writing its pictures (bytes), estimated from its size: the
 /// per-row sums and the images built from them (3 f64 per pixel and shading each), the 8-bit
 /// RGB picture and its PNG encoding (≤ 3 bytes per pixel each; a strip is drawn at most
-/// [`MAX_SIDE`] rows tall), plus 64 MiB for the program, the scene and the thread scratch.
+/// `MAX_SIDE` rows tall), plus 64 MiB for the program, the scene and the thread scratch.
 /// The wavelength grid is inside that allowance: each pixel's spectrum is summed into XYZ as it
 /// is traced and never stored, and the per-thread phasor batches grow with the sample count
 /// only; at the cap of 4096 samples a 100×100 render peaks 0.5 MB above one with 81 samples

@@ -49,7 +49,7 @@ impl Plane {
 
     /// Signed distance of `x` from the plane (positive on the front side), formed as
     /// (x − anchor)·normal − height: near a plate, x − anchor is small and exact.
-    pub fn signed_distance(&self, x: DVec3) -> f64 {
+    pub(crate) fn signed_distance(&self, x: DVec3) -> f64 {
         (x - self.anchor).dot(self.normal) - self.height_m
     }
 
@@ -57,7 +57,7 @@ impl Plane {
     /// x − anchor, double-double products and sum, so the ~1e-16 m by which an f64 point misses
     /// a tilted plane is resolved even 1 cm from the anchor (where the f64 dot product rounds at
     /// ~1e-18 m).
-    pub fn signed_distance_precise(&self, x: DVec3) -> f64 {
+    pub(crate) fn signed_distance_precise(&self, x: DVec3) -> f64 {
         use crate::optics::double_double::{DoubleDouble, two_diff};
         let d = [
             two_diff(x.x, self.anchor.x),
@@ -70,7 +70,7 @@ impl Plane {
     }
 
     /// The first-order change of an optical path when its point `x` on this plane, rounded off
-    /// it by ε = [`Plane::signed_distance_precise`], is moved back onto it along the normal (m of
+    /// it by ε = `Plane::signed_distance_precise`, is moved back onto it along the normal (m of
     /// optical path): with the path arriving along `u_in` in index `n_in` and leaving along
     /// `u_out` in index `n_out` (any lengths: normalised here), the path n_in|x − a| +
     /// n_out|b − x| (or a far-field projection) changes by ε N·(n_out û_out − n_in û_in).
@@ -96,7 +96,7 @@ impl Plane {
     /// The distance from `other` to this plane along this plane's normal, when both are held
     /// from the same anchor with the same or the opposite normal (the faces of one plate):
     /// exactly the difference of their heights, no coordinates differenced.
-    pub fn separation_from(&self, other: &Plane) -> Option<f64> {
+    pub(crate) fn separation_from(&self, other: &Plane) -> Option<f64> {
         if self.anchor != other.anchor {
             return None;
         }
@@ -111,7 +111,7 @@ impl Plane {
 
     /// Ray parameter t (distance along the unit `dir`) where the ray from `origin` meets the
     /// plane, or `None` if it runs parallel to it.
-    pub fn intersect(&self, origin: DVec3, dir: DVec3) -> Option<f64> {
+    pub(crate) fn intersect(&self, origin: DVec3, dir: DVec3) -> Option<f64> {
         let denom = dir.dot(self.normal);
         if denom == 0.0 {
             return None;
@@ -122,7 +122,7 @@ impl Plane {
     /// The point of the plane nearest `x` (the orthogonal projection x − s·normal, s the signed
     /// distance). In f64 the result is off the plane by the rounding of `x − point` only.
     #[inline(always)]
-    pub fn project(&self, x: DVec3) -> DVec3 {
+    pub(crate) fn project(&self, x: DVec3) -> DVec3 {
         x - self.signed_distance(x) * self.normal
     }
 
@@ -180,7 +180,7 @@ pub enum Extent {
 
 impl Extent {
     /// In-plane coordinates of `x` relative to the plane point.
-    pub fn uv(u: DVec3, v: DVec3, plane: &Plane, x: DVec3) -> [f64; 2] {
+    pub(crate) fn uv(u: DVec3, v: DVec3, plane: &Plane, x: DVec3) -> [f64; 2] {
         let d = x - plane.point;
         [d.dot(u), d.dot(v)]
     }
@@ -196,6 +196,6 @@ impl Extent {
 
 /// The angle between two vectors, atan2(|a×b|, a·b): accurate for small angles, where
 /// acos(a·b) loses half the digits (for 1 mrad, acos errs by ~1e-13 rad).
-pub fn angle_between(a: DVec3, b: DVec3) -> f64 {
+pub(crate) fn angle_between(a: DVec3, b: DVec3) -> f64 {
     a.cross(b).length().atan2(a.dot(b))
 }

@@ -80,12 +80,12 @@ impl Surface {
     }
 
     /// Whether light interacts (reflects/refracts) at `x`.
-    pub fn interacts(&self, x: DVec3) -> bool {
+    pub(crate) fn interacts(&self, x: DVec3) -> bool {
         !matches!(self.kind, SurfaceKind::Opaque { .. }) && self.extent.contains(&self.plane, x)
     }
 
     /// Whether every point of the plane within `margin` (m) of the in-plane point `x` stops a
-    /// ray ([`Surface::blocks`]) or deflects it ([`Surface::interacts`]): a verdict that holds
+    /// ray ([`Surface::blocks`]) or deflects it (`Surface::interacts`): a verdict that holds
     /// for `x` computed to within `margin`.
     pub fn surely_stops(&self, x: DVec3, margin: f64) -> bool {
         // Inside (or, with `outside`, outside) a rectangle by more than the margin, in (u, v)

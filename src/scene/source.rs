@@ -65,7 +65,7 @@ pub enum Polarization {
 
 /// The channels of one source: at most this many (the basis-free unpolarized model's three
 /// dipoles). Coherence ids are `CHANNELS_PER_GROUP·g + 1 + k` for channel k of group g.
-pub const CHANNELS_PER_GROUP: u64 = 3;
+pub(crate) const CHANNELS_PER_GROUP: u64 = 3;
 
 /// How a channel's launch field depends on the ray direction.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -146,7 +146,7 @@ impl Channel {
     }
 
     /// The unit field direction of this channel for a ray leaving along unit `dir`.
-    pub fn field_direction(&self, dir: DVec3) -> DVec3 {
+    pub(crate) fn field_direction(&self, dir: DVec3) -> DVec3 {
         match self.field {
             ChannelField::Linear { reference, .. } => {
                 self.field_direction_from(field_reference(reference, dir), dir)
@@ -158,7 +158,7 @@ impl Channel {
     /// [`Channel::field_direction`] of a linear channel from
     /// `e_ref = field_reference(reference, dir)` (one evaluation serves every channel with the
     /// same reference); `e_ref` itself for a dipole channel.
-    pub fn field_direction_from(&self, e_ref: DVec3, dir: DVec3) -> DVec3 {
+    pub(crate) fn field_direction_from(&self, e_ref: DVec3, dir: DVec3) -> DVec3 {
         match self.field {
             ChannelField::Linear { angle_rad, .. } => {
                 angle_rad.cos() * e_ref + angle_rad.sin() * dir.cross(e_ref)
@@ -168,7 +168,7 @@ impl Channel {
     }
 
     /// The reference vector of a linear channel (`None` for a dipole).
-    pub fn linear_reference(&self) -> Option<DVec3> {
+    pub(crate) fn linear_reference(&self) -> Option<DVec3> {
         match self.field {
             ChannelField::Linear { reference, .. } => Some(reference),
             ChannelField::Dipole { .. } => None,
@@ -178,7 +178,7 @@ impl Channel {
 
 /// The unit field direction of angle 0 for a ray leaving along unit `dir`: `reference`
 /// projected perpendicular to `dir` (an arbitrary perpendicular if they are nearly parallel).
-pub fn field_reference(reference: DVec3, dir: DVec3) -> DVec3 {
+pub(crate) fn field_reference(reference: DVec3, dir: DVec3) -> DVec3 {
     let r = reference - reference.dot(dir) * dir;
     if r.length() > 1e-9 {
         r.normalize()
@@ -189,7 +189,7 @@ pub fn field_reference(reference: DVec3, dir: DVec3) -> DVec3 {
 
 impl Source {
     /// The polarization channels with their coherence ids: channel k of group g has id
-    /// 3g + 1 + k ([`CHANNELS_PER_GROUP`]), so no two channels of different groups, and no two
+    /// 3g + 1 + k (`CHANNELS_PER_GROUP`), so no two channels of different groups, and no two
     /// channels of one source, share an id.
     pub fn channels(&self) -> Vec<Channel> {
         let id = |k: u64| CHANNELS_PER_GROUP * self.coherence_group + 1 + k;

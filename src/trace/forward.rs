@@ -59,7 +59,7 @@ impl Screen {
     }
 
     /// [width, height] of one pixel, m.
-    pub fn pixel_size(&self) -> [f64; 2] {
+    pub(crate) fn pixel_size(&self) -> [f64; 2] {
         [
             self.size_m[0] / self.pixels[0] as f64,
             self.size_m[1] / self.pixels[1] as f64,
@@ -67,7 +67,7 @@ impl Screen {
     }
 
     /// Centre of pixel (column i, row j).
-    pub fn pixel_center(&self, i: usize, j: usize) -> DVec3 {
+    pub(crate) fn pixel_center(&self, i: usize, j: usize) -> DVec3 {
         let [w, h] = self.pixel_size();
         self.center
             + ((i as f64 + 0.5) * w - 0.5 * self.size_m[0]) * self.u

@@ -767,7 +767,7 @@ fn far_field_walk(
 }
 
 /// The panic message of asking for `paper_rules` of an arrival traced without them.
-pub const PAPER_MISSING: &str =
+pub(crate) const PAPER_MISSING: &str =
     "paper_rules asked of an arrival traced without the paper's rules (trace::arrivals_with)";
 
 /// The phase in cycles of the optical path `path` measured from `reference` at vacuum
@@ -868,11 +868,6 @@ fn tail_contribution(
     }
 }
 
-/// [`contribution_from`] with the absolute optical path (phase referred to the source).
-pub fn contribution(a: &Arrival, level: Fidelity) -> Contribution {
-    contribution_from(a, level, DoubleDouble::ZERO)
-}
-
 /// The contributions of all arrivals at one point, phases referred to the first arrival's
 /// optical path (a common phase does not change any intensity).
 pub fn contributions(arrivals: &[Arrival], level: Fidelity) -> Vec<Contribution> {
@@ -892,7 +887,7 @@ pub fn intensity(arrivals: &[Arrival], level: Fidelity) -> f64 {
     acc.intensity()
 }
 
-/// What the arrivals at one point need from the ladder (merge points with [`merge_needs`]).
+/// What the arrivals at one point need from the ladder (merge points with `merge_needs`).
 pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
     let mut n = SceneNeeds {
         parallel_fields: true,
@@ -937,7 +932,7 @@ fn vector_field(a: &Arrival) -> crate::optics::ray::Field3 {
 }
 
 /// Combine the needs of several points.
-pub fn merge_needs(a: SceneNeeds, b: SceneNeeds) -> SceneNeeds {
+pub(crate) fn merge_needs(a: SceneNeeds, b: SceneNeeds) -> SceneNeeds {
     SceneNeeds {
         interference: a.interference || b.interference,
         interfaces: a.interfaces || b.interfaces,

@@ -35,7 +35,7 @@ pub struct SequenceTree {
 
 /// A tree under construction: children found in any order, deduplicated.
 #[derive(Clone, Debug, Default)]
-pub struct TreeBuilder {
+pub(crate) struct TreeBuilder {
     /// Node 0 is the root.
     nodes: Vec<BuildNode>,
 }
@@ -58,7 +58,7 @@ impl TreeBuilder {
     }
 
     /// The root (the empty sequence).
-    pub const ROOT: usize = 0;
+    pub(crate) const ROOT: usize = 0;
 
     /// The child of `node` one `event` further, created if new.
     pub fn child(&mut self, node: usize, event: Event) -> usize {
@@ -76,7 +76,7 @@ impl TreeBuilder {
     }
 
     /// Mark `node`'s sequence as a candidate.
-    pub fn mark(&mut self, node: usize) {
+    pub(crate) fn mark(&mut self, node: usize) {
         self.nodes[node].candidate = true;
     }
 

@@ -77,7 +77,7 @@ pub struct TailClosure {
 /// formed without cancellation from `one_minus_abs2` = 1 − |a|², and a bound on its relative
 /// rounding error given the error `dpsi` (rad) of ψ. `None` when |a| = 1 (no decay: the series
 /// diverges).
-pub fn geometric_sum(
+pub(crate) fn geometric_sum(
     a: Complex64,
     one_minus_abs2: f64,
     cycles: f64,
@@ -153,7 +153,7 @@ impl TailClosure {
 
     /// The intensity of orders N + 1, N + 2, … added without phase (`incoherent`), given order
     /// N's field `e`: Σ_σ |e_σ|² |A_σ|²/(1 − |A_σ|²).
-    pub fn incoherent_intensity(&self, e: &Field3) -> f64 {
+    pub(crate) fn incoherent_intensity(&self, e: &Field3) -> f64 {
         let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
         let rt = &self.vector;
         [dot(self.s), dot(self.p)]
@@ -173,7 +173,7 @@ impl TailClosure {
     /// Σ_k |A_σ|^k e^{2πi k (ΔS/λ + j/2)} (j the denser-side reflections per round trip when
     /// `jump`). A geometric series only for s or p light (|A_s| ≠ |A_p| otherwise): NaN for
     /// mixed light (docs/PHYSICS.md §5a).
-    pub fn scalar_factor(&self, e: &Field3, jump: bool, lambda_m: f64) -> Complex64 {
+    pub(crate) fn scalar_factor(&self, e: &Field3, jump: bool, lambda_m: f64) -> Complex64 {
         let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
         let (es, ep) = (dot(self.s).norm(), dot(self.p).norm());
         let k = if ep <= PURE_POLARIZATION * es {

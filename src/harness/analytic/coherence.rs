@@ -21,7 +21,7 @@ pub fn two_beam(i1: f64, i2: f64, gamma: f64, delta: f64) -> f64 {
 /// sin(2π f) in double-double for a fraction of a cycle `f` (|f| ≤ ½ after the whole cycles are
 /// removed): the Taylor series of sin x at x = 2π f (2π in double-double), 60 terms, whose
 /// truncation is below 1e-40 for |x| ≤ π; accurate to ~1e-31 absolute.
-pub fn sin_cycles_dd(f: twofloat::TwoFloat) -> twofloat::TwoFloat {
+pub(crate) fn sin_cycles_dd(f: twofloat::TwoFloat) -> twofloat::TwoFloat {
     use twofloat::TwoFloat;
     // 2π = TAU + 2.4492935982947064e-16 (the low part of 2π in double-double).
     let tau = TwoFloat::new_add(std::f64::consts::TAU, 2.449_293_598_294_706_4e-16);
@@ -41,7 +41,7 @@ pub fn sin_cycles_dd(f: twofloat::TwoFloat) -> twofloat::TwoFloat {
 /// §3, the `coherence_gaussian` reference): beams a1 = r12 and a2 = t12 r23 t21 (real at normal
 /// incidence, `n1` above, `n2` the plate, `n3` below) with the phase δ = 4π n2 d/λ, as
 /// (a1 + a2)² − 4 a1 a2 sin²(δ/2), everything in double-double: the optical thickness `n2_d`
-/// (m, as held), the Fresnel coefficients, sin(δ/2) ([`sin_cycles_dd`]) and the difference.
+/// (m, as held), the Fresnel coefficients, sin(δ/2) (`sin_cycles_dd`) and the difference.
 /// Near a dark fringe the two terms cancel to ~1e-5 of each (a plate between a dense ambient
 /// and a rare substrate): in f64 that cancellation cost 1e-11 of the value, more than the
 /// tracer's own error (`fringe fuzz --family coherence_gaussian`, checked at 50 digits).

@@ -36,7 +36,7 @@ fn mirror(v: DVec3, n: DVec3) -> DVec3 {
 
 impl Arm {
     /// Virtual source: the source mirrored through every reflection plane in order.
-    pub fn virtual_source(&self, src: DVec3) -> DVec3 {
+    pub(crate) fn virtual_source(&self, src: DVec3) -> DVec3 {
         self.reflections
             .iter()
             .fold(src, |x, r| x - 2.0 * (x - r.point).dot(r.normal) * r.normal)

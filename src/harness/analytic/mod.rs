@@ -21,7 +21,7 @@ pub fn path_phasor(s_m: f64, lambda_m: f64) -> Complex64 {
 }
 
 /// Solve f(x) = 0 on [a, b] by bisection to the last bit (f must change sign).
-pub fn bisect(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
+pub(crate) fn bisect(mut a: f64, mut b: f64, f: impl Fn(f64) -> f64) -> f64 {
     let mut fa = f(a);
     for _ in 0..200 {
         let m = 0.5 * (a + b);

@@ -101,7 +101,7 @@ impl Incidence {
     }
 
     /// sin²θ1 = 1 − cos²θ1, double-double.
-    pub fn sin_sq(&self) -> TwoFloat {
+    pub(crate) fn sin_sq(&self) -> TwoFloat {
         TwoFloat::from(1.0) - self.cos_sq
     }
 }
@@ -404,7 +404,7 @@ impl Film {
 
     /// The thickness (m) from which the evanescent coupling `deviation` (of a film of this
     /// thickness) falls to `limit`, if it decays as e^{−2κd} from here: d + ln(deviation/limit)/(2κ).
-    pub fn thickness_for(&self, f: &Frustration, deviation: f64, limit: f64) -> f64 {
+    pub(crate) fn thickness_for(&self, f: &Frustration, deviation: f64, limit: f64) -> f64 {
         if f.kappa_per_m > 0.0 && deviation > limit {
             self.thickness_m + (deviation / limit).ln() / (2.0 * f.kappa_per_m)
         } else {
@@ -414,7 +414,7 @@ impl Film {
 
     /// The reflection amplitude summed over the first `orders` reflected beams only: order 0 is
     /// r12, order m ≥ 1 is t12 t21 r23 (r21 r23)^{m−1} e^{imβ} (m round trips).
-    pub fn r_truncated(
+    pub(crate) fn r_truncated(
         &self,
         incidence: impl Into<Incidence>,
         lambda_m: f64,
@@ -509,7 +509,7 @@ pub struct Beam {
 
 impl TwoBeamPlate {
     /// Beam 1: reflection at the top face (image method): tan θ = x/(h_s + h_o).
-    pub fn beam_top(&self, x_m: f64) -> Beam {
+    pub(crate) fn beam_top(&self, x_m: f64) -> Beam {
         let h = self.h_src_m + self.h_obs_m;
         let theta = x_m.atan2(h);
         // cos θ = h/√(x² + h²) keeps its relative precision near grazing, where cos(atan2)

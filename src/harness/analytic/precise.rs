@@ -24,7 +24,7 @@ pub fn diff(a: DVec3, b: DVec3) -> [TwoFloat; 3] {
 /// 1 − b·(1/b) without a fused multiply-add and is only as accurate as f64: found by the
 /// 50-digit two-beam test, where it cost 1e-13 of the intensity of a 1 mm plate.) One Newton
 /// step on the reciprocal, with the residual 1 − b·x0 formed exactly.
-pub fn div(a: TwoFloat, b: TwoFloat) -> TwoFloat {
+pub(crate) fn div(a: TwoFloat, b: TwoFloat) -> TwoFloat {
     let x0 = 1.0 / b.hi();
     let residual = TwoFloat::from(1.0) - b * x0;
     a * (TwoFloat::from(x0) + residual * x0)
@@ -74,7 +74,7 @@ pub fn unit(v: DVec3) -> [TwoFloat; 3] {
 }
 
 /// The dot product of two double-double vectors.
-pub fn dot2(a: &[TwoFloat; 3], b: &[TwoFloat; 3]) -> TwoFloat {
+pub(crate) fn dot2(a: &[TwoFloat; 3], b: &[TwoFloat; 3]) -> TwoFloat {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
 

@@ -10,12 +10,12 @@ use num_complex::Complex64;
 use twofloat::TwoFloat;
 
 /// Exact wedge fringe spacing for plane-wave illumination, λ/(n sin 2α) (m).
-pub fn fringe_spacing_exact(lambda_m: f64, n: f64, alpha_rad: f64) -> f64 {
+pub(crate) fn fringe_spacing_exact(lambda_m: f64, n: f64, alpha_rad: f64) -> f64 {
     lambda_m / (n * (2.0 * alpha_rad).sin())
 }
 
 /// The textbook small-angle spacing λ/(2nα) (m).
-pub fn fringe_spacing_small_angle(lambda_m: f64, n: f64, alpha_rad: f64) -> f64 {
+pub(crate) fn fringe_spacing_small_angle(lambda_m: f64, n: f64, alpha_rad: f64) -> f64 {
     lambda_m / (2.0 * n * alpha_rad)
 }
 

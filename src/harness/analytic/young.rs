@@ -74,12 +74,12 @@ pub fn paraxial(d_m: f64, l_m: f64, y_m: f64, lambda_m: f64, n: f64) -> f64 {
 }
 
 /// Paraxial fringe spacing λ l/(n d) (m) in a medium of index `n`.
-pub fn fringe_spacing_paraxial(d_m: f64, l_m: f64, lambda_m: f64, n: f64) -> f64 {
+pub(crate) fn fringe_spacing_paraxial(d_m: f64, l_m: f64, lambda_m: f64, n: f64) -> f64 {
     lambda_m * l_m / (n * d_m)
 }
 
 /// Exact local fringe spacing on the axis (y = 0) in a medium of index `n`:
 /// 2π/|dδ/dy| = λ sqrt(l² + d²/4)/(n d).
-pub fn fringe_spacing_exact_on_axis(d_m: f64, l_m: f64, lambda_m: f64, n: f64) -> f64 {
+pub(crate) fn fringe_spacing_exact_on_axis(d_m: f64, l_m: f64, lambda_m: f64, n: f64) -> f64 {
     lambda_m * (l_m * l_m + 0.25 * d_m * d_m).sqrt() / (n * d_m)
 }

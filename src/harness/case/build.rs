@@ -138,7 +138,7 @@ fn planar(
 }
 
 /// The plane-wave direction of an incidence override.
-pub fn incidence_direction(theta: f64, normal: DVec3, axis: DVec3) -> DVec3 {
+pub(crate) fn incidence_direction(theta: f64, normal: DVec3, axis: DVec3) -> DVec3 {
     let n = normal.normalize();
     let a = (axis - axis.dot(n) * n).normalize();
     (theta.sin() * a - theta.cos() * n).normalize()
@@ -561,7 +561,7 @@ pub fn plane_wave(scene: &Scene) -> Option<(DVec3, DVec3)> {
 }
 
 /// The tracer target of an observer at wavelength `lambda_m`; an error where no wave
-/// propagates toward it ([`propagating_target`]).
+/// propagates toward it (`propagating_target`).
 pub fn target(observer: &Observer, built: &Built, lambda_m: f64) -> Result<Target, String> {
     propagating_target(observer, built, lambda_m)?
         .ok_or_else(|| "no transmitted wave: total internal reflection".to_string())
@@ -571,7 +571,7 @@ pub fn target(observer: &Observer, built: &Built, lambda_m: f64) -> Result<Targe
 /// far-field probe beyond the critical angle of the ambient → exit medium pair: no transmitted
 /// plane wave propagates there, nothing arrives, and the power transmittance is exactly 0
 /// (docs/PHYSICS.md §3a), which the runner records instead of refusing the sweep.
-pub fn propagating_target(
+pub(crate) fn propagating_target(
     observer: &Observer,
     built: &Built,
     lambda_m: f64,

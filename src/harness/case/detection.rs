@@ -7,7 +7,7 @@
 //! The fault is applied to the arrival after the first at every probe point and wavelength (the
 //! second beam of a two-beam scene, the first internal reflection of a plate): a phase offset
 //! of ε rad, or an amplitude factor 1 + ε. Tracing is done once; only the accumulation is
-//! repeated while ε is bisected on a log scale, over at most [`MAX_POINTS`] probe points spread
+//! repeated while ε is bisected on a log scale, over at most `MAX_POINTS` probe points spread
 //! evenly (fewer points can only miss an error, so the floor is never optimistic).
 
 use super::build;
@@ -24,7 +24,7 @@ use num_complex::Complex64;
 use rayon::prelude::*;
 
 /// Probe points the floor is measured on, at most.
-pub const MAX_POINTS: usize = 48;
+pub(crate) const MAX_POINTS: usize = 48;
 /// A floor above this multiple of the tolerance fails the case.
 pub const FLOOR_FACTOR: f64 = 10.0;
 
@@ -54,7 +54,7 @@ pub enum Floor {
 
 /// An error injected into one path.
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Fault {
+pub(crate) enum Fault {
     /// Phase offset (rad).
     Phase(f64),
     /// Amplitude factor 1 + ε.

@@ -82,7 +82,7 @@ pub fn measured(observer: &Observer) -> Observable {
 
 /// The factor turning the traced far-field |E|² into the observable `observer` measures at
 /// vacuum wavelength `lambda_m` ([`crate::optics::observable::power_factor`]; 1 for |E|² and for R).
-pub fn observable_factor(
+pub(crate) fn observable_factor(
     observer: &Observer,
     built: &Built,
     target: &Target,
@@ -116,7 +116,7 @@ pub fn observable_factor(
 /// The largest tan θt inside a plate at which the two-beam closed form still solves for the beam
 /// through the plate when the top beam is totally reflected (see the `two_beam_plate` arm of
 /// [`value`]): cos θt ≥ 1e-3.
-pub const MAX_GRAZING_TAN: f64 = 1e3;
+pub(crate) const MAX_GRAZING_TAN: f64 = 1e3;
 
 /// Short name of a reference model for tables (the serde tag).
 pub fn name(model: &ReferenceModel) -> String {
@@ -134,7 +134,7 @@ fn index(built: &Built, medium: &str, lambda_m: f64) -> Result<f64, String> {
 }
 
 /// The index of the ambient medium (where sources and screen points sit) at `lambda_m`.
-pub fn ambient_index(built: &Built, lambda_m: f64) -> Result<f64, String> {
+pub(crate) fn ambient_index(built: &Built, lambda_m: f64) -> Result<f64, String> {
     built
         .scene
         .ambient
@@ -971,7 +971,7 @@ fn michelson_ref(
 /// probe along any other sequence (a mirror large enough to be lit directly, a second pass
 /// through the splitter) is outside the two-arm closed form, and a case whose scene lets it
 /// through is refused by the runner rather than compared (docs/PHYSICS.md §5 "Michelson").
-pub fn michelson_sequences(
+pub(crate) fn michelson_sequences(
     built: &Built,
     splitter: &str,
     mirrors: &[String; 2],

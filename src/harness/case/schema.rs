@@ -14,14 +14,14 @@ const SCHEMA_ID: &str = "https://github.com/fringe/fringe/cases/schema.json";
 
 /// The schema of a case file (JSON Schema draft 2020-12), as `fringe schema` prints it and
 /// `cases/schema.json` holds it.
-pub fn case_schema() -> serde_json::Value {
+pub(crate) fn case_schema() -> serde_json::Value {
     let generator = schemars::generate::SchemaSettings::draft2020_12().into_generator();
     let mut schema = generator.into_root_schema_for::<CaseFile>();
     schema.insert("$id".into(), SCHEMA_ID.into());
     schema.to_value()
 }
 
-/// [`case_schema`] as the text of `cases/schema.json`: pretty-printed, with a final newline.
+/// `case_schema` as the text of `cases/schema.json`: pretty-printed, with a final newline.
 pub fn case_schema_text() -> String {
     let mut s = serde_json::to_string_pretty(&case_schema()).expect("a schema serializes");
     s.push('\n');

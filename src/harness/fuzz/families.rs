@@ -82,7 +82,7 @@ impl Family {
 
 /// The `vector` tolerance of every generated case: the library's (a relative deviation of
 /// 1e-9 of the profile's largest value; pointwise for retardances).
-pub const VECTOR_TOLERANCE: f64 = 1e-9;
+pub(crate) const VECTOR_TOLERANCE: f64 = 1e-9;
 
 /// Largest coordinate a generator places (m): below the 1000 m cap with room for the
 /// translation of the rigid motion.

@@ -36,16 +36,16 @@ use std::path::{Path, PathBuf};
 
 /// Largest translation of a scene (m): with the generators' reach of 250 m every coordinate
 /// stays inside the ±1000 m range of case files.
-pub const MAX_OFFSET_M: f64 = 500.0;
+pub(crate) const MAX_OFFSET_M: f64 = 500.0;
 /// Probability that a scene is rotated, and that it is translated.
-pub const P_ROTATE: f64 = 0.75;
-pub const P_TRANSLATE: f64 = 0.5;
+pub(crate) const P_ROTATE: f64 = 0.75;
+pub(crate) const P_TRANSLATE: f64 = 0.5;
 /// Evaluations a failure's shrinking may spend.
-pub const SHRINK_BUDGET: usize = 300;
+pub(crate) const SHRINK_BUDGET: usize = 300;
 
 /// A deliberate change applied to every generated scene after it is drawn (for tests that
 /// show the fuzzer catches and shrinks a known defect, e.g. a wrong reference parameter).
-pub type Mutation = fn(&mut Value);
+pub(crate) type Mutation = fn(&mut Value);
 
 /// Options of a fuzz run.
 #[derive(Clone, Debug)]
@@ -416,7 +416,7 @@ fn verdict_text(v: &Verdict) -> String {
 }
 
 /// A refusal reason with its numbers replaced by `#`, so refusals group by kind.
-pub fn reason_kind(reason: &str) -> String {
+pub(crate) fn reason_kind(reason: &str) -> String {
     let mut out = String::new();
     let mut chars = reason.chars().peekable();
     while let Some(c) = chars.next() {

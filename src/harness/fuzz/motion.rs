@@ -24,7 +24,7 @@ pub const DIRECTION_KEYS: [&str; 10] = [
 
 /// A proper rotation and a translation (m).
 #[derive(Clone, Copy, Debug, PartialEq)]
-pub struct RigidMotion {
+pub(crate) struct RigidMotion {
     pub rotation: DMat3,
     pub translation_m: DVec3,
 }
@@ -114,7 +114,7 @@ fn vec3(items: &[Value]) -> DVec3 {
 }
 
 /// A 3-vector as JSON numbers; a component within 1e-300 of zero is written as 0.
-pub fn vec3_json(v: DVec3) -> Value {
+pub(crate) fn vec3_json(v: DVec3) -> Value {
     let c = |x: f64| if x.abs() < 1e-300 { 0.0 } else { x };
     serde_json::json!([c(v.x), c(v.y), c(v.z)])
 }

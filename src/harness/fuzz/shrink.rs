@@ -13,7 +13,7 @@
 use super::draws::DrawKind;
 
 /// Candidate replacements for a drawn value, simplest first, without repeats or `v` itself.
-pub fn candidates(v: f64, kind: DrawKind) -> Vec<f64> {
+pub(crate) fn candidates(v: f64, kind: DrawKind) -> Vec<f64> {
     let mut out: Vec<f64> = Vec::new();
     match kind {
         DrawKind::Choice | DrawKind::Flag => out.push(0.0),
@@ -56,7 +56,7 @@ fn simpler(a: f64, b: f64) -> bool {
 }
 
 /// `v` rounded to `digits` significant decimal digits.
-pub fn round_significant(v: f64, digits: i32) -> f64 {
+pub(crate) fn round_significant(v: f64, digits: i32) -> f64 {
     if v == 0.0 || !v.is_finite() {
         return v;
     }
@@ -71,7 +71,7 @@ pub fn round_significant(v: f64, digits: i32) -> f64 {
 
 /// Shrink `draws` while `still_fails` holds, with at most `budget` calls of `still_fails`.
 /// Returns the simplest failing draws found (the input if none simpler fails).
-pub fn shrink(
+pub(crate) fn shrink(
     draws: Vec<f64>,
     kinds: &[DrawKind],
     budget: usize,

@@ -47,7 +47,7 @@ fn observer_name(o: &Observer) -> &'static str {
 }
 
 /// `probes.csv` of a case.
-pub fn probes_csv(case: &Case) -> String {
+pub(crate) fn probes_csv(case: &Case) -> String {
     let opt = |x: Option<f64>| x.map(|v| format!("{v:.17e}")).unwrap_or_default();
     let rows = build::probe_points(&case.spec.probe)
         .into_iter()
@@ -88,7 +88,7 @@ pub fn probes_csv(case: &Case) -> String {
 }
 
 /// `expected.csv` of a case run.
-pub fn expected_csv(result: &CaseResult, qs: &[Quantity]) -> String {
+pub(crate) fn expected_csv(result: &CaseResult, qs: &[Quantity]) -> String {
     let mut header: Vec<String> = ["quantity", "reference", "coordinate", "closed_form"]
         .map(String::from)
         .to_vec();
@@ -120,7 +120,7 @@ pub fn expected_csv(result: &CaseResult, qs: &[Quantity]) -> String {
 }
 
 /// `pack.json` of a case run.
-pub fn pack_json(case: &Case, result: &CaseResult, qs: &[Quantity]) -> serde_json::Value {
+pub(crate) fn pack_json(case: &Case, result: &CaseResult, qs: &[Quantity]) -> serde_json::Value {
     let (coord, unit) = coordinate_name(&case.spec.probe);
     let spectrum: Vec<serde_json::Value> =
         build::spectrum(&case.spec.light, &build::Overrides::default())

@@ -42,7 +42,7 @@ pub enum Observable {
 impl Observable {
     /// The observable of an intensity-like reference, from the probe kind: far-field probes of
     /// a plane wave measure power R or T; screen points and far-field directions |E|².
-    pub fn of_probe(probe: &Probe) -> Observable {
+    pub(crate) fn of_probe(probe: &Probe) -> Observable {
         let observer = match probe {
             Probe::Sweep { observe, .. } | Probe::Single { observe } => Some(observe),
             Probe::Line { .. } | Probe::Grid { .. } => None,
@@ -61,7 +61,7 @@ impl Observable {
     }
 
     /// The observable of a metric of a case with this probe.
-    pub fn of_metric(kind: MetricKind, probe: &Probe) -> Observable {
+    pub(crate) fn of_metric(kind: MetricKind, probe: &Probe) -> Observable {
         match kind {
             MetricKind::Intensity => Observable::of_probe(probe),
             MetricKind::Retardance => Observable::Retardance,
@@ -131,7 +131,7 @@ impl Observable {
 }
 
 /// The probe coordinate: its name and unit.
-pub fn coordinate_name(probe: &Probe) -> (&'static str, &'static str) {
+pub(crate) fn coordinate_name(probe: &Probe) -> (&'static str, &'static str) {
     match probe {
         Probe::Line { .. } => (
             "distance_m",

@@ -33,14 +33,14 @@ impl std::fmt::Display for ValuesError {
 }
 
 /// The header every value file starts with.
-pub const HEADER: &str = "quantity,coordinate,value";
+pub(crate) const HEADER: &str = "quantity,coordinate,value";
 
 /// Coordinates must match the probe's to this relative precision (they are written with 17
 /// significant digits; a tracer's own rounding of the sweep is allowed).
-pub const COORDINATE_TOLERANCE: f64 = 1e-9;
+pub(crate) const COORDINATE_TOLERANCE: f64 = 1e-9;
 
 /// Write `values` (one vector per quantity) as a value file.
-pub fn to_csv(quantities: &[Quantity], values: &[Vec<f64>]) -> String {
+pub(crate) fn to_csv(quantities: &[Quantity], values: &[Vec<f64>]) -> String {
     let rows = quantities.iter().zip(values).flat_map(|(q, v)| {
         q.coordinates
             .iter()

@@ -17,7 +17,7 @@
 //!
 //! (Belcour & Barla eqs. 6–9; ψ is the phase of r21 r23 e^{iβ} of docs/PHYSICS.md §5, β = 2π OPD/λ,
 //! so the full series equals |r|² of the Airy sum: [`reflectance`] with many orders is a check
-//! of the exact closed form.) The model keeps [`ORDERS`] = 3 orders (the paper's code; the glTF
+//! of the exact closed form.) The model keeps `ORDERS` = 3 orders (the paper's code; the glTF
 //! sample code keeps 2).
 //!
 //! **Spectral integration with fitted sensitivities.** Instead of integrating R(λ) against the
@@ -26,7 +26,7 @@
 //! normalised so that S(0) ≈ (1, 1, 1), the equal-energy white). As in the glTF reference, the
 //! constant term C0 is added as an RGB grey (white = linear sRGB (1, 1, 1), the D65 white) and
 //! the oscillating terms, whose sensitivities are fitted for the equal-energy illuminant, as
-//! XYZ → linear sRGB; negative RGB is clamped to 0. [`colour_xyz`]
+//! XYZ → linear sRGB; negative RGB is clamped to 0. `colour_xyz`
 //! returns that colour back in XYZ (D65 white, Y = 1 for a perfect reflector) to compare with the
 //! exact colour. Both polarizations are evaluated with the exact Fresnel amplitudes and averaged
 //! (the paper's code; the glTF sample code uses Schlick's approximation of the averaged R
@@ -38,7 +38,7 @@ use crate::optics::fresnel::{cos2_theta_t, fresnel};
 use std::f64::consts::PI;
 
 /// Fourier orders m the model keeps (Belcour & Barla's supplemental code: m = 1..3).
-pub const ORDERS: usize = 3;
+pub(crate) const ORDERS: usize = 3;
 
 /// The coefficients of (BB1) for one polarization.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -155,7 +155,7 @@ fn inverse(m: &[[f64; 3]; 3]) -> [[f64; 3]; 3] {
 /// OPD, m φ2), averaged over s and p, clamped at 0 (glTF `evalIridescence`), returned as XYZ
 /// with the D65 white of the sRGB matrix M (Y = 1 for a perfect reflector). Under total
 /// internal reflection at the front face: the white (R = 1).
-pub fn colour_xyz(film: &Film, cos_theta_1: f64, orders: usize) -> [f64; 3] {
+pub(crate) fn colour_xyz(film: &Film, cos_theta_1: f64, orders: usize) -> [f64; 3] {
     let to_xyz = inverse(&XYZ_TO_LINEAR_SRGB);
     let Some(t) = terms(film, cos_theta_1) else {
         return mat_vec(&to_xyz, [1.0; 3]);

@@ -85,7 +85,7 @@ pub const STACKS: [Stack; 5] = [
 ];
 
 /// Angles of incidence of the study (degrees): 0, 2, …, 88.
-pub fn angles_deg() -> Vec<f64> {
+pub(crate) fn angles_deg() -> Vec<f64> {
     (0..=44).map(|k| 2.0 * k as f64).collect()
 }
 
@@ -242,7 +242,7 @@ fn max_diff(a: &[f64], b: &[f64], lambdas: &[f64]) -> (f64, f64) {
         })
 }
 
-/// Every comparison of the table at every point of `stacks` × [`angles_deg`] × thicknesses.
+/// Every comparison of the table at every point of `stacks` × `angles_deg` × thicknesses.
 pub fn run(stacks: &[Stack]) -> Vec<GridRow> {
     let grid = WavelengthGrid::cie_1nm();
     let integ = SpectralIntegrator::new(&grid, Illuminant::D65).expect("the CIE grid is valid");
@@ -443,7 +443,7 @@ pub fn summarize(rows: &[GridRow]) -> Vec<Summary> {
 }
 
 /// `models.csv`: every grid row.
-pub fn grid_csv(rows: &[GridRow]) -> String {
+pub(crate) fn grid_csv(rows: &[GridRow]) -> String {
     crate::io::csv_text(
         &[
             "stack",
@@ -476,7 +476,7 @@ fn opt(x: Option<f64>, unit: &str) -> String {
 }
 
 /// `summary.csv`: the error table.
-pub fn summary_csv(rows: &[Summary]) -> String {
+pub(crate) fn summary_csv(rows: &[Summary]) -> String {
     let o = |x: Option<f64>| x.map(|v| format!("{v}")).unwrap_or_default();
     crate::io::csv_text(
         &[
@@ -515,7 +515,7 @@ pub fn summary_csv(rows: &[Summary]) -> String {
 }
 
 /// The error table as Markdown (the README's table is this output).
-pub fn summary_markdown(rows: &[Summary]) -> String {
+pub(crate) fn summary_markdown(rows: &[Summary]) -> String {
     let mut s = String::from(
         "| stack | model / simplification | worst \\|ΔR\\| (θ, d, λ) | worst ΔE00 (θ, d) | ΔE00 < 1 on | ΔE00 < 1 at all angles from d = | ΔE00 < 1 at all d up to θ = | worst Δretardance |\n| --- | --- | --- | --- | --- | --- | --- | --- |\n",
     );

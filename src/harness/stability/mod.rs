@@ -45,7 +45,7 @@
 //! For the same path lengths the sweep evaluates, without tracing, the phase a program would get
 //! if it formed phases from absolute optical paths (φ_k = 2π s_k/λ per beam, then φ2 − φ1): with
 //! the paths stored in f64, and with the paths stored in IEEE binary32. The binary32 store is
-//! emulated on f64 bits by [`round_to_binary32`] (no single-precision type is used); the phases
+//! emulated on f64 bits by `paths::round_to_binary32` (no single-precision type is used); the phases
 //! are then formed in f64, so the curve shows the cost of the storage alone. Storing a path of
 //! 1 m moves it by up to half a binary32 spacing (the spacing is 6e-8 m just below 1 m and
 //! 1.2e-7 m just above), up to 6e-8 m or 0.7 rad of phase at 550 nm; forming the phases
@@ -85,7 +85,8 @@ use film::{film_rows, finesse_rows, random_film_rows};
 pub use film::{traced_film, traced_film_with};
 use interface::{critical_rows, incidence_rows, index_rows};
 use paths::path_rows;
-pub use paths::{collinear_sources, path_grid, path_points, path_points_with, round_to_binary32};
+pub use paths::{collinear_sources, path_points};
+pub(crate) use paths::{path_grid, path_points_with};
 
 /// Vacuum wavelength of the whole sweep (m).
 pub const WAVELENGTH_M: f64 = 550e-9;
@@ -98,10 +99,10 @@ pub const PATH_PHASE_TOLERANCE_RAD: f64 = 1e-12;
 
 /// The bound on the relative deviation of a traced film reflectance from the Airy sum (and of a
 /// truncated traced sum from the truncated closed form): issue #13's 1e-12.
-pub const FILM_TOLERANCE: f64 = 1e-12;
+pub(crate) const FILM_TOLERANCE: f64 = 1e-12;
 
 /// The relative deviation of a traced film reflectance from the Airy sum that the f64 inputs
-/// allow: [`FILM_TOLERANCE`] plus the conditioning of R on its inputs. The round-trip phase
+/// allow: `FILM_TOLERANCE` plus the conditioning of R on its inputs. The round-trip phase
 /// β = 4π n2 d cos θ2/λ of a scene given in f64 (direction components, indices, thickness) is
 /// itself known only to a few ε·β, and the tracer carries phases in f64 cycles of the same
 /// relative rounding, which moves R by |∂R/∂β|·β·ε = |d ∂R/∂d|·ε; 16ε bounds the few roundings.
@@ -149,7 +150,7 @@ fn hold(mut arr: Vec<trace::Arrival>, arithmetic: PathArithmetic) -> Vec<trace::
 }
 
 /// Path differences per path length in the path sweep (the worst one is reported).
-pub const PATH_OFFSETS: usize = 8;
+pub(crate) const PATH_OFFSETS: usize = 8;
 
 /// How a row's deviation is measured.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -224,7 +225,7 @@ impl StabilityRow {
     }
 }
 
-/// The phase errors of one path length (worst over [`PATH_OFFSETS`] path differences).
+/// The phase errors of one path length (worst over `PATH_OFFSETS` path differences).
 #[derive(Clone, Copy, Debug, PartialEq, Serialize)]
 pub struct PathPoint {
     /// Optical path of the nearer beam, s (m).

@@ -17,7 +17,7 @@ use super::*;
 /// Method: with e = ⌊log2 |x|⌋ (from the exponent bits; at least −126), the spacing of binary32
 /// values near x is q = 2^(e−23); x/q and the product by q are exact power-of-two scalings, so
 /// `(x/q).round_ties_even()·q` is the correctly rounded value (a carry to 2^(e+1) included).
-pub fn round_to_binary32(x: f64) -> f64 {
+pub(crate) fn round_to_binary32(x: f64) -> f64 {
     if !x.is_finite() || x == 0.0 {
         return x;
     }
@@ -34,7 +34,7 @@ pub fn round_to_binary32(x: f64) -> f64 {
 }
 
 /// The path lengths of the plot: 1, 2, 5 per decade from 1 nm to 10 m.
-pub fn path_grid() -> Vec<f64> {
+pub(crate) fn path_grid() -> Vec<f64> {
     let mut g = Vec::new();
     for e in -9..=0 {
         for m in [1.0, 2.0, 5.0] {
@@ -115,14 +115,14 @@ fn absolute_phase_difference(path_m: f64, offset_m: f64, store: impl Fn(f64) -> 
     k * s2 - k * s1
 }
 
-/// The three methods' phase errors at each path length (worst over [`PATH_OFFSETS`]). The exact
+/// The three methods' phase errors at each path length (worst over `PATH_OFFSETS`). The exact
 /// phase 2πΔs/λ is rounded once (relative 1e-16), orders of magnitude below every error shown.
 pub fn path_points(paths_m: &[f64]) -> Vec<PathPoint> {
     path_points_with(paths_m, PathArithmetic::DoubleDouble)
 }
 
 /// [`path_points`] with the traced paths held as `arithmetic` says.
-pub fn path_points_with(paths_m: &[f64], arithmetic: PathArithmetic) -> Vec<PathPoint> {
+pub(crate) fn path_points_with(paths_m: &[f64], arithmetic: PathArithmetic) -> Vec<PathPoint> {
     paths_m
         .iter()
         .map(|&s| {

@@ -22,7 +22,7 @@ use std::path::Path;
 
 /// A picture of a case and what it shows (`<case>/pictures.json`).
 #[derive(Clone, Debug, Serialize, Deserialize, PartialEq)]
-pub struct PictureEntry {
+pub(crate) struct PictureEntry {
     pub file: String,
     pub caption: String,
 }
@@ -46,7 +46,7 @@ fn intensity_profile(r: &CaseResult) -> Option<&std::collections::BTreeMap<Fidel
 /// Pictures of a case from its traced values (no extra tracing): a strip for a line probe
 /// (vector level), one picture per level for a grid probe. Monochrome, in the hue of the case's
 /// (centre) wavelength, each normalised to its brightest point.
-pub fn case_pictures(case: &Case, r: &CaseResult) -> Vec<(String, Rgb8Image, String)> {
+pub(crate) fn case_pictures(case: &Case, r: &CaseResult) -> Vec<(String, Rgb8Image, String)> {
     let Some(traced) = intensity_profile(r) else {
         return Vec::new();
     };
@@ -88,7 +88,7 @@ pub fn case_pictures(case: &Case, r: &CaseResult) -> Vec<(String, Rgb8Image, Str
 
 /// Writes `profile.png`, `convergence.png` (sweeps with a convergence study), the probe
 /// pictures and `pictures.json` into `dir`.
-pub fn write_case_files(dir: &Path, case: &Case, r: &CaseResult) -> Result<(), String> {
+pub(crate) fn write_case_files(dir: &Path, case: &Case, r: &CaseResult) -> Result<(), String> {
     if let Some(png) = plot::profile_png(r, &plot::x_label(&case.spec.probe))? {
         write(dir, "profile.png", &png)?;
     }
@@ -397,7 +397,7 @@ pub fn index_html(out: &Path) -> Result<String, String> {
 /// "fidelity metric"), over the comparisons with closed forms and golden files (not the
 /// detection floors). Rows with a zero tolerance count when their deviation is not zero
 /// (infinitely far beyond). `None` when no row is judged against a tolerance.
-pub fn worst_margin(rows: &[serde_json::Value]) -> Option<(f64, String)> {
+pub(crate) fn worst_margin(rows: &[serde_json::Value]) -> Option<(f64, String)> {
     rows.iter()
         .filter(|r| r.get("pass").and_then(|p| p.as_bool()).is_some())
         // Detection floors (the smallest error a check catches) are not margins of the result.

@@ -36,7 +36,7 @@ impl Rgb8Image {
     }
 
     /// This one-row picture repeated `height` times (a line probe drawn as a strip).
-    pub fn extrude(&self, height: usize) -> Rgb8Image {
+    pub(crate) fn extrude(&self, height: usize) -> Rgb8Image {
         let row = &self.pixels[..self.width];
         Rgb8Image {
             width: self.width,
@@ -52,14 +52,18 @@ impl Rgb8Image {
 }
 
 /// Encode 8-bit sRGB pixels (row-major) as a PNG file.
-pub fn encode_png(width: usize, height: usize, pixels: &[[u8; 3]]) -> Result<Vec<u8>, String> {
+pub(crate) fn encode_png(
+    width: usize,
+    height: usize,
+    pixels: &[[u8; 3]],
+) -> Result<Vec<u8>, String> {
     encode_png_with(width, height, pixels, None)
 }
 
 /// [`encode_png`] with the given compression (`None`: the encoder's defaults, as
 /// [`encode_png`]): report plots (large, mostly white) use `Fast`; pictures keep the defaults,
 /// so their files are unchanged.
-pub fn encode_png_with(
+pub(crate) fn encode_png_with(
     width: usize,
     height: usize,
     pixels: &[[u8; 3]],
@@ -88,7 +92,7 @@ pub fn encode_png_with(
     Ok(out)
 }
 
-/// Decode an 8-bit RGB PNG (as written by [`encode_png`]); for tests and checks.
+/// Decode an 8-bit RGB PNG (as written by `encode_png`); for tests and checks.
 pub fn decode_png(bytes: &[u8]) -> Result<Rgb8Image, String> {
     let dec = png::Decoder::new(std::io::Cursor::new(bytes));
     let mut reader = dec.read_info().map_err(|e| e.to_string())?;
@@ -165,7 +169,7 @@ pub fn colour(
 }
 
 /// The exposure that maps the largest Y of `images` to 1 (1 if all are black).
-pub fn exposure_for_peak_y<'a>(images: impl IntoIterator<Item = &'a [[f64; 3]]>) -> f64 {
+pub(crate) fn exposure_for_peak_y<'a>(images: impl IntoIterator<Item = &'a [[f64; 3]]>) -> f64 {
     let y = images
         .into_iter()
         .flat_map(|im| im.iter().map(|p| p[1]))

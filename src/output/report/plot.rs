@@ -18,7 +18,7 @@ use std::sync::Once;
 static DEJAVU_SANS: &[u8] = include_bytes!("../../../data/fonts/DejaVuSans.ttf");
 
 /// Registers the shipped font as plotters' "sans-serif" (once per process).
-pub fn register_font() {
+pub(crate) fn register_font() {
     static ONCE: Once = Once::new();
     ONCE.call_once(|| {
         // The font is compiled in and parsed by a test: failure here is a build defect.
@@ -29,10 +29,10 @@ pub fn register_font() {
 }
 
 /// Width of every case plot (pixels).
-pub const WIDTH: u32 = 1000;
+pub(crate) const WIDTH: u32 = 1000;
 /// Height of the value panel and of the deviation panel of one metric (pixels).
-pub const VALUE_PANEL: u32 = 320;
-pub const DEVIATION_PANEL: u32 = 220;
+pub(crate) const VALUE_PANEL: u32 = 320;
+pub(crate) const DEVIATION_PANEL: u32 = 220;
 /// Size of `convergence.png`.
 pub const CONVERGENCE_SIZE: (u32, u32) = (800, 480);
 
@@ -112,7 +112,7 @@ pub(crate) fn render_png(
 }
 
 /// Line colour of a fidelity level (the same in every plot).
-pub fn level_colour(level: Fidelity) -> RGBColor {
+pub(crate) fn level_colour(level: Fidelity) -> RGBColor {
     match level {
         Fidelity::Incoherent => RGBColor(140, 80, 170),
         Fidelity::Scalar => RGBColor(230, 140, 20),
@@ -134,7 +134,7 @@ fn level_width(level: Fidelity) -> u32 {
 }
 
 /// The x-axis label of a case's probe coordinate.
-pub fn x_label(probe: &Probe) -> String {
+pub(crate) fn x_label(probe: &Probe) -> String {
     match probe {
         Probe::Line { .. } => "position along the probe line (m)".into(),
         Probe::Sweep { parameter, .. } => match parameter {
@@ -181,7 +181,7 @@ fn finite_range(values: impl Iterator<Item = f64>) -> (f64, f64) {
 /// `profile.png`: for each metric with a profile, the closed form (wide grey) and the traced
 /// values of every level, and below it the deviation of every level on a log scale with the
 /// level's tolerance as a dashed line. `None` when the case has nothing to plot.
-pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, String> {
+pub(crate) fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, String> {
     let Some(size) = profile_size(r) else {
         return Ok(None);
     };
@@ -336,7 +336,7 @@ pub fn profile_png(r: &CaseResult, x_label: &str) -> Result<Option<Vec<u8>>, Str
 
 /// `convergence.png`: the traced error of the Airy sum and its geometric-tail bound against the
 /// number of reflected orders (log scale). `None` without convergence rows.
-pub fn convergence_png(r: &CaseResult) -> Result<Option<Vec<u8>>, String> {
+pub(crate) fn convergence_png(r: &CaseResult) -> Result<Option<Vec<u8>>, String> {
     if r.convergence.is_empty() {
         return Ok(None);
     }
@@ -415,7 +415,7 @@ pub fn convergence_png(r: &CaseResult) -> Result<Option<Vec<u8>>, String> {
 
 /// Newton's colour strip with a thickness axis: one band per (label, sRGB colours), the
 /// colours evenly spaced from `t0_nm` to `t1_nm`.
-pub fn newton_strip_png(
+pub(crate) fn newton_strip_png(
     bands: &[(String, Vec<[u8; 3]>)],
     t0_nm: f64,
     t1_nm: f64,
@@ -471,7 +471,7 @@ pub fn newton_strip_png(
 
 /// Colour error (CIEDE2000) against the number of spectral samples, one line per series
 /// (label, [(samples, ΔE00)]), log–log.
-pub fn colour_error_png(series: &[(String, Vec<(usize, f64)>)]) -> Result<Vec<u8>, String> {
+pub(crate) fn colour_error_png(series: &[(String, Vec<(usize, f64)>)]) -> Result<Vec<u8>, String> {
     render_png((800, 480), |root| {
         let xmax = series
             .iter()
@@ -546,14 +546,14 @@ pub fn colour_error_png(series: &[(String, Vec<(usize, f64)>)]) -> Result<Vec<u8
 }
 
 /// Size of `stability_paths.png`.
-pub const STABILITY_PATHS_SIZE: (u32, u32) = (900, 560);
+pub(crate) const STABILITY_PATHS_SIZE: (u32, u32) = (900, 560);
 
 /// `stability_paths.png`: the two-beam phase error against optical path, log–log, for phases
 /// formed from absolute binary32 paths, from absolute f64 paths, and fringe's traced paths
 /// differenced in metres; the bound (dashed) and π (dotted, beyond it a fringe can be
 /// anywhere). Both axes are drawn in decades (log10 on linear axes, labelled 1e-n, so every
 /// decade gets a tick); exact zeros are drawn at the floor of the axis.
-pub fn stability_paths_png(
+pub(crate) fn stability_paths_png(
     points: &[crate::harness::stability::PathPoint],
 ) -> Result<Vec<u8>, String> {
     use std::f64::consts::PI;

@@ -8,7 +8,7 @@ use std::fmt::Write as _;
 use std::path::Path;
 
 /// The models' error table, if `OUT/models/summary.csv` exists.
-pub fn models_section(h: &mut String, out: &Path) {
+pub(crate) fn models_section(h: &mut String, out: &Path) {
     let Ok(text) = std::fs::read_to_string(out.join("models/summary.csv")) else {
         return;
     };
@@ -38,7 +38,7 @@ pub fn models_section(h: &mut String, out: &Path) {
 }
 
 /// One section per graded case, if `OUT/grade/*/grade.json` exist.
-pub fn grade_section(h: &mut String, out: &Path) {
+pub(crate) fn grade_section(h: &mut String, out: &Path) {
     let Ok(dirs) = std::fs::read_dir(out.join("grade")) else {
         return;
     };

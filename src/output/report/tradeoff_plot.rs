@@ -211,7 +211,7 @@ pub fn forward_png(rows: &[StudyRow]) -> Result<Vec<u8>, String> {
 /// The `fringe tradeoff` and `fringe forward` results for the report page, from the files those
 /// commands wrote under `out` (`tradeoff/summary.txt`, `tradeoff/<case>_pareto.png`,
 /// `forward/forward.png`); `None` when neither command has run into `out`.
-pub fn report_section(out: &Path) -> Option<String> {
+pub(crate) fn report_section(out: &Path) -> Option<String> {
     use super::html::{base64, escape};
     use std::fmt::Write as _;
     let img = |path: &Path, alt: &str| -> Option<String> {

@@ -100,7 +100,7 @@ impl<'a> FarFieldPaths<'a> {
     }
 
     /// The optical path at the launch point (m; [`SolvedPath::start_optical_path`]).
-    pub fn start_optical_path(&self) -> DoubleDouble {
+    pub(crate) fn start_optical_path(&self) -> DoubleDouble {
         self.start
     }
 

@@ -39,7 +39,7 @@ pub(super) fn name_ok(n: &str) -> bool {
 
 /// The nearest a probe point may be to a point or line source (m): about a wavelength; closer,
 /// ray optics does not hold and on the source the wave is singular.
-pub const MIN_PROBE_DISTANCE_M: f64 = 1.0e-6;
+pub(crate) const MIN_PROBE_DISTANCE_M: f64 = 1.0e-6;
 
 /// The planes of a surface's faces: (a point, the unit normal); one for thin surfaces, two for
 /// plates and wedges (the wedge's bottom tilted by its angle about the hinge). A bounded

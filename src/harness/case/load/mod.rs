@@ -12,7 +12,8 @@ mod json;
 mod probe;
 mod scene;
 
-pub use fields::{MIN_PROBE_DISTANCE_M, probe_point_count};
+pub(crate) use fields::MIN_PROBE_DISTANCE_M;
+pub use fields::probe_point_count;
 use fields::{name_ok, num, surface_planes, unit};
 use json::{positional_object, repeated_key, serde_error};
 
@@ -31,13 +32,13 @@ pub mod limits {
     /// Refractive indices accepted.
     pub const INDEX: (f64, f64) = (1.0e-3, 10.0);
     /// Probe points × spectral samples per case (the number of traced point-wavelength pairs).
-    pub const MAX_POINT_SAMPLES: usize = 10_000_000;
+    pub(crate) const MAX_POINT_SAMPLES: usize = 10_000_000;
     /// Largest `coherence_group` of a source.
     pub const MAX_COHERENCE_GROUP: u64 = 1_000_000_000;
     /// Largest `tir_count` of a `rhomb_retardance` reference.
     pub const MAX_TIR_COUNT: usize = 100;
     /// Largest case file (bytes).
-    pub const MAX_FILE_BYTES: u64 = 16 << 20;
+    pub(crate) const MAX_FILE_BYTES: u64 = 16 << 20;
     /// Thinnest plate or wedge (µm): 1 pm. Films down to 1 pm trace correctly; below it a
     /// thickness is nonsense (1e-300 µm), not physics.
     pub const MIN_THICKNESS_UM: f64 = 1.0e-6;
@@ -52,7 +53,7 @@ pub mod limits {
         "summary",
     ];
     /// Directions (normals, axes, polarization references) must have a length in this range.
-    pub const DIRECTION_LENGTH: (f64, f64) = (1.0e-12, 1.0e12);
+    pub(crate) const DIRECTION_LENGTH: (f64, f64) = (1.0e-12, 1.0e12);
 }
 
 /// A case-file error: file, JSON path, message.

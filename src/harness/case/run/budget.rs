@@ -89,13 +89,13 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
 /// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
 /// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
 /// 110 s measured) too; four (2.8e9) are refused.
-pub const MAX_PATH_EVENTS: f64 = 5.0e8;
+pub(crate) const MAX_PATH_EVENTS: f64 = 5.0e8;
 
 /// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
 /// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
 /// this project at a load of about 12 (six developers building); README "Limits" gives the
 /// runs and the command. Used only to state the estimate in time.
-pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+pub(crate) const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
 
 /// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
 /// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
@@ -184,7 +184,7 @@ fn point_work(
 
 /// The tracing work of a case, checked before anything runs, in work units (one unit: a probe
 /// ray of sequence discovery visiting one node of the sequence tree, or the solver tracing one
-/// surface event; about [`SECONDS_PER_WORK_UNIT`] each). The tree is enumerated as the tracer enumerates it, at the probe point with
+/// surface event; about `SECONDS_PER_WORK_UNIT` each). The tree is enumerated as the tracer enumerates it, at the probe point with
 /// the largest internal-reflection budget (the Airy tail rule may raise it near grazing
 /// incidence up to the cap; beyond it the budget is [`CLOSED_TAIL_ORDERS`] orders and the
 /// closed tail, one arrival of O(1) work per channel, docs/PHYSICS.md §5a), so the count follows the surfaces: reflections between separate surfaces in
@@ -193,7 +193,7 @@ fn point_work(
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
 /// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
 /// spectral samples; the bounce-convergence report of monochrome Airy cases adds twelve budgets
-/// of at most 24 points. A case over [`MAX_PATH_EVENTS`] is refused with the estimate (units
+/// of at most 24 points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
 /// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;

@@ -26,7 +26,7 @@ mod wiring;
 pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
-pub use budget::{CLOSED_TAIL_ORDERS, MAX_PATH_EVENTS, SECONDS_PER_WORK_UNIT, preflight};
+pub use budget::{CLOSED_TAIL_ORDERS, preflight};
 use convergence::*;
 use metrics::*;
 use wiring::*;
@@ -34,7 +34,7 @@ use wiring::*;
 /// The smallest scale an intensity profile's deviations are divided by: a profile that vanishes
 /// everywhere (p light at Brewster's angle) is judged on an absolute scale of 1e-15 of a unit
 /// source, not relative to its own rounding noise (the gate and the golden comparison).
-pub const VANISHING_SCALE: f64 = 1e-15;
+pub(crate) const VANISHING_SCALE: f64 = 1e-15;
 
 /// Traced and closed-form values of one reference over the probe.
 #[derive(Clone, Debug)]
