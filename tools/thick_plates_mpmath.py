@@ -1,6 +1,6 @@
 #!/usr/bin/env python3
 """50-digit values of thick plates in a rotated frame, as written and as held
-(tests/suite/truth_thick_plates.rs; issue #12, `fringe fuzz --count 300 --seed 1`, airy scene
+(tests/suite/truth_thick_plates.rs and truth_airy_tracer.rs; issue #12, `fringe fuzz --count 300 --seed 1`, airy scene
 159 in its rotated frame: a 1 m plate, n 10 -> 1.5 -> 10, 200 nm, transmitted, 0-10 deg).
 
 For each case file in tests/fuzz_found/ named below, at every probe point, the Airy sum of
@@ -31,7 +31,7 @@ from precision_classes_mpmath import index, normalize, sweep_points
 mp.mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
 FOUND = os.path.join(HERE, "..", "tests", "fuzz_found")
-CASES = ["fuzz_airy_s1_159_rotated"]
+CASES = ["fuzz_airy_s1_159_rotated", "fuzz_airy_s1_159"]
 
 
 def values(case, extra_normalizations):
