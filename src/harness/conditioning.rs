@@ -31,6 +31,10 @@
 //! bound is Σ_g of that (plus u I for the final sum). C = 8 covers the handful of roundings
 //! each quantity passes through. The bound uses |E_g| itself (not Σ|E_k|), so at a dark fringe
 //! it is as small as the arithmetic makes the error there.
+//!
+//! [`direction_sensitivity`] is a different quantity, kept apart: not a rounding of the tracer
+//! but how far the exact observable moves when the scene's plane-wave direction turns by the
+//! rounding an f64 scene holds it to (docs/PHYSICS.md §8, "Representation sensitivity").
 
 use crate::accumulate::fidelity::Fidelity;
 use crate::accumulate::phasor_from_cycles;
@@ -217,7 +221,9 @@ pub const DIRECTION_ROUNDING: f64 = 2.0 * UNIT_ROUNDOFF;
 /// (n_out cos θ_out) through Snell's law at the first and last face (1 for a reflection). Then
 /// δI = Σ_g 2 Re(E_g* · Σ_k i 2π δΔS_k/λ E_k e^{iφ_k}). 0 for point and line sources (their
 /// positions are held to u|X| in every frame, which the path terms of
-/// [`intensity_rounding`] already carry) and for a single arrival.
+/// [`intensity_rounding`] already carry) and for a single arrival. A closed Airy tail counts
+/// at the offsets of the order it starts from (its further orders carry at most the tail
+/// bound's share of the field).
 pub fn direction_sensitivity(
     arrivals: &[Arrival],
     reference: DoubleDouble,
