@@ -104,7 +104,7 @@ fn the_representation_term_covers_one_rounding_of_the_direction_tightly() {
 }
 
 /// `fringe fuzz` judges the scene at stated + representation: it passes (it failed at 8.5e-9
-/// > 1e-9), and at that band the gate still sees an error: the detection floors, measured at
+/// against 1e-9), and at that band the gate still sees an error: the detection floors, measured at
 /// the widened tolerance, catch a phase error on one path and an amplitude error within 10× of
 /// the band (the library's rule, docs/PHYSICS.md §8).
 #[test]
