@@ -31,6 +31,10 @@
 //! bound is Σ_g of that (plus u I for the final sum). C = 8 covers the handful of roundings
 //! each quantity passes through. The bound uses |E_g| itself (not Σ|E_k|), so at a dark fringe
 //! it is as small as the arithmetic makes the error there.
+//!
+//! [`direction_sensitivity`] is a different quantity, kept apart: not a rounding of the tracer
+//! but how far the exact observable moves when the scene's plane-wave direction turns by the
+//! rounding an f64 scene holds it to (docs/PHYSICS.md §8, "Representation sensitivity").
 
 use crate::accumulate::fidelity::Fidelity;
 use crate::accumulate::phasor_from_cycles;
@@ -196,4 +200,119 @@ pub fn intensity_rounding(
 pub(crate) fn relative_tolerance(rounding: &[f64], analytic: &[f64], floor: f64) -> f64 {
     let scale = analytic.iter().fold(1e-15f64, |m, a| m.max(a.abs()));
     rounding.iter().fold(floor, |m, r| m.max(r / scale))
+}
+
+/// The turn (rad) by which a plane wave's direction, or a surface normal, is held off the one
+/// written: one f64 normalization of each (the scene's `normalize`, `Plane::new`), u for the
+/// direction and u for the normal it meets (docs/PHYSICS.md §8, "Representation sensitivity").
+pub const DIRECTION_ROUNDING: f64 = 2.0 * UNIT_ROUNDOFF;
+
+/// The *representation sensitivity* of the `vector` intensity of `arrivals` (docs/PHYSICS.md
+/// §8): how far the exact intensity moves when the incident plane wave's direction turns by
+/// [`DIRECTION_ROUNDING`], the rounding with which an f64 scene holds a direction it was given
+/// in any frame but the axes. Not a rounding error of the tracer: the scene the tracer holds is
+/// that far from the one written, and every f64 tracer holds it so.
+///
+/// First order and signed, so tight: by Hamilton's mixed characteristic an arrival whose
+/// entry and exit points lie Δx_in, Δx_out from the reference arrival's (the first) changes its
+/// optical path difference by δΔS_k = n_in (Δx_in·e_in) δθ − n_out (Δx_out·e_out) δθ_out when
+/// the incident direction turns by δθ toward e_in (⊥ d_in) and the exit direction by δθ_out
+/// toward e_out (the in-plane axis of the orders' walk); δθ_out = δθ n_in cos θ_in /
+/// (n_out cos θ_out) through Snell's law at the first and last face (1 for a reflection). Then
+/// δI = Σ_g 2 Re(E_g* · Σ_k i 2π δΔS_k/λ E_k e^{iφ_k}). 0 for point and line sources (their
+/// positions are held to u|X| in every frame, which the path terms of
+/// [`intensity_rounding`] already carry) and for a single arrival. A closed Airy tail counts
+/// at the offsets of the order it starts from (its further orders carry at most the tail
+/// bound's share of the field).
+pub fn direction_sensitivity(
+    arrivals: &[Arrival],
+    reference: DoubleDouble,
+    lambda_m: f64,
+    scene: &Scene,
+) -> f64 {
+    let Some(first) = arrivals.first() else {
+        return 0.0;
+    };
+    let plane_wave = |a: &Arrival| {
+        matches!(
+            scene.sources.get(a.source).map(|s| &s.emitter),
+            Some(crate::scene::source::Emitter::PlaneWave { .. })
+        )
+    };
+    if arrivals.len() < 2 || !arrivals.iter().all(plane_wave) {
+        return 0.0;
+    }
+    let ends = |a: &Arrival| {
+        let p = &a.path;
+        let (x0, x1) = (p.points[0], *p.points.last().unwrap());
+        let (d0, d1) = (p.dirs[0].normalize(), p.dirs.last().unwrap().normalize());
+        let (n0, n1) = (p.indices[0], *p.indices.last().unwrap());
+        (x0, x1, d0, d1, n0, n1)
+    };
+    let (r_in, r_out, _, _, _, _) = ends(first);
+    // The walk's in-plane axis at exit (and at entry): the largest offset from the first
+    // arrival, perpendicular to the ray.
+    let axis = |pick: &dyn Fn(&Arrival) -> (DVec3, DVec3)| {
+        arrivals
+            .iter()
+            .map(|a| {
+                let (x, d) = pick(a);
+                x - x.dot(d) * d
+            })
+            .max_by(|a, b| a.length().total_cmp(&b.length()))
+            .filter(|v| v.length() > 0.0)
+            .map(|v| v.normalize())
+    };
+    let e_out = axis(&|a| {
+        let (_, x1, _, d1, _, _) = ends(a);
+        (x1 - r_out, d1)
+    });
+    let e_in = axis(&|a| {
+        let (x0, _, d0, _, _, _) = ends(a);
+        (x0 - r_in, d0)
+    });
+    // δθ_out per δθ through the first and last face (Snell: n cos θ dθ is conserved).
+    let turn_out = {
+        let p = &first.path;
+        match (p.sequence.first(), p.sequence.last()) {
+            (Some(a), Some(b)) => {
+                let (na, nb) = (
+                    scene.surfaces[a.surface].plane.normal,
+                    scene.surfaces[b.surface].plane.normal,
+                );
+                let (_, _, d0, d1, n0, n1) = ends(first);
+                let (c0, c1) = (d0.dot(na).abs(), d1.dot(nb).abs());
+                if c1 > 0.0 { (n0 * c0) / (n1 * c1) } else { 0.0 }
+            }
+            _ => 1.0,
+        }
+    };
+    let mut groups: BTreeMap<u64, ([Complex64; 3], [Complex64; 3])> = BTreeMap::new();
+    let mut total = 0.0;
+    for a in arrivals {
+        let c = trace::contribution_from(a, Fidelity::Vector, reference);
+        let (x0, x1, _, _, n0, n1) = ends(a);
+        let ds_in = e_in.map_or(0.0, |e| n0 * (x0 - r_in).dot(e));
+        let ds_out = e_out.map_or(0.0, |e| n1 * (x1 - r_out).dot(e) * turn_out);
+        let dphi = std::f64::consts::TAU * (ds_in - ds_out) * DIRECTION_ROUNDING / lambda_m;
+        let ph = phasor_from_cycles(c.phase_cycles);
+        if c.coherence_id == INCOHERENT {
+            continue;
+        }
+        let g = groups
+            .entry(c.coherence_id)
+            .or_insert(([Complex64::default(); 3], [Complex64::default(); 3]));
+        for ((s, ds), f) in g.0.iter_mut().zip(g.1.iter_mut()).zip(c.field) {
+            *s += f * ph;
+            *ds += f * ph * Complex64::new(0.0, dphi);
+        }
+    }
+    for (e, de) in groups.values() {
+        total += e
+            .iter()
+            .zip(de)
+            .map(|(x, dx)| 2.0 * (x.conj() * dx).re)
+            .sum::<f64>();
+    }
+    total.abs()
 }

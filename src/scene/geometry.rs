@@ -66,6 +66,15 @@ impl Plane {
         ];
         let n = self.normal;
         let dot = d[0].mul_f64(n.x) + d[1].mul_f64(n.y) + d[2].mul_f64(n.z);
+        // The f64 normal is unit only to ~1e-16: the distance along N/|N| is dot/|N|. A plate
+        // 1 m thick in a rotated frame otherwise held its far face ~1e-16 m off, 1e-8 rad of
+        // its round trip at 200 nm (issue #12, `fuzz_airy_s1_159` rotated).
+        let norm2 = DoubleDouble::dot(n, n);
+        let dot = if norm2.hi == 1.0 && norm2.lo == 0.0 {
+            dot
+        } else {
+            dot / norm2.sqrt()
+        };
         (dot - DoubleDouble::from(self.height_m)).to_f64()
     }
 

@@ -205,9 +205,16 @@ pub fn judge(case: &Value, file: &Path) -> Verdict {
         .get(&Fidelity::Vector)
         .copied()
         .unwrap_or(0.0);
+    // Plus the scene's representation sensitivity (docs/PHYSICS.md §8): how far the exact
+    // observable moves when the scene's plane-wave direction turns by the rounding an f64 scene
+    // holds it to (a thick plate in a rotated frame), which no f64 tracer can avoid.
+    let representation = primary
+        .derived_tolerance(&result.representation, 0.0)
+        .unwrap_or(0.0);
     let tolerance = primary
         .derived_tolerance(&result.rounding, DERIVED_FLOOR)
-        .map_or(stated, |d| d.min(stated));
+        .map_or(stated, |d| d.min(stated))
+        + representation;
     let Some(stats) = primary.stats(Fidelity::Vector) else {
         return Verdict::Refused {
             reason: "$.references[0]: the primary reference has no traced value at vector".into(),
@@ -238,8 +245,18 @@ pub fn judge(case: &Value, file: &Path) -> Verdict {
             tolerance,
             at: stats.at,
             note: format!(
-                "traced {:e}, closed form {:e} at coordinate {:e}",
-                traced[k], primary.analytic[k], stats.at
+                "traced {:e}, closed form {:e} at coordinate {:e}{}",
+                traced[k],
+                primary.analytic[k],
+                stats.at,
+                if representation > 1e-3 * tolerance {
+                    format!(
+                        " (tolerance includes {representation:.2e}: the scene's direction \
+                         held to one rounding moves the observable that far)"
+                    )
+                } else {
+                    String::new()
+                }
             ),
         }
     }

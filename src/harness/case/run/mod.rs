@@ -185,12 +185,18 @@ pub struct CaseResult {
     /// Per probe point, the bound on the rounding error of the traced `vector` intensity that
     /// the arithmetic allows ([`crate::harness::conditioning::intensity_rounding`], same units).
     pub rounding: Vec<f64>,
+    /// Per probe point, how far the exact `vector` intensity moves when the scene's plane-wave
+    /// direction turns by the rounding its f64 representation allows
+    /// ([`crate::harness::conditioning::direction_sensitivity`], same units; docs/PHYSICS.md §8).
+    pub representation: Vec<f64>,
 }
 
 struct PointOut {
     intensity: BTreeMap<Fidelity, f64>,
     /// [`crate::harness::conditioning::intensity_rounding`] summed over the spectrum like the intensity.
     rounding: f64,
+    /// [`crate::harness::conditioning::direction_sensitivity`] summed like the intensity.
+    representation: f64,
     analytic: Vec<f64>,
     /// Retardance / visibility per reference and level.
     special: Vec<BTreeMap<Fidelity, f64>>,
@@ -351,6 +357,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
     let mut out = PointOut {
         intensity: levels.iter().map(|l| (*l, 0.0)).collect(),
         rounding: 0.0,
+        representation: 0.0,
         analytic: vec![0.0; spec.references.len()],
         special: vec![BTreeMap::new(); spec.references.len()],
         needs: SceneNeeds::default(),
@@ -393,6 +400,14 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
                     lambda,
                     &built.scene,
                     &optics,
+                );
+            out.representation += w
+                * factor
+                * crate::harness::conditioning::direction_sensitivity(
+                    &arr,
+                    r,
+                    lambda,
+                    &built.scene,
                 );
         }
         for (ri, r) in spec.references.iter().enumerate() {
@@ -631,6 +646,7 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         observable: measured,
         detection: None,
         rounding: outs.iter().map(|o| o.rounding).collect(),
+        representation: outs.iter().map(|o| o.representation).collect(),
     };
     if convergence_report {
         result.convergence = convergence(case, &points)?;
