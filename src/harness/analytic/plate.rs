@@ -111,7 +111,9 @@ impl Incidence {
 /// neglected, so that the ray model's total reflection (R = |r12|² = 1, T = 0) is the exact
 /// answer to within it. It is 1/10 of the smallest tolerance the gate derives (1e-12,
 /// `harness::conditioning`): a scene whose exact and ray-model answers differ by more is refused,
-/// never compared against a closed form that knows what the tracer cannot trace.
+/// never compared against a closed form that knows what the tracer cannot trace. Since the
+/// tracer reflects with the layer's frustrated r_layer (`optics::fresnel::frustrated_layer`)
+/// this applies only to the transmittance (the tunnelled wave is not traced).
 pub const FTIR_NEGLIGIBLE: f64 = 1e-13;
 
 /// The difference between the exact Airy answer and the ray model's total reflection beyond
