@@ -38,9 +38,9 @@
 
 use crate::accumulate::fidelity::Fidelity;
 use crate::accumulate::phasor_from_cycles;
-use crate::optics::double_double::DoubleDouble;
+use crate::optics::double_double::{DoubleDouble, two_prod};
 use crate::optics::fresnel;
-use crate::optics::interaction::{SurfaceOptics, indices_for};
+use crate::optics::interaction::{Layer, SurfaceOptics, indices_for};
 use crate::optics::ray::INCOHERENT;
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::path::EventKind;
@@ -71,6 +71,21 @@ pub fn fresnel_sensitivity(
     d_in: DVec3,
     n_in: f64,
 ) -> f64 {
+    layer_sensitivity(optics, kind, normal, d_in, n_in, None)
+}
+
+/// [`fresnel_sensitivity`] of an event at a face with the layer `layer` behind it on the
+/// incident ray's far side ([`crate::scene::SceneOptics::layers`]): beyond the critical angle
+/// its reflection is the layer's frustrated one ([`fresnel::frustrated_layer`],
+/// docs/PHYSICS.md §5), whose e^{−2κd} makes it more sensitive to the angle than r12.
+pub fn layer_sensitivity(
+    optics: SurfaceOptics,
+    kind: EventKind,
+    normal: DVec3,
+    d_in: DVec3,
+    n_in: f64,
+    layer: Option<Layer>,
+) -> f64 {
     let SurfaceOptics::Dielectric { .. } = optics else {
         return 0.0;
     };
@@ -80,9 +95,21 @@ pub fn fresnel_sensitivity(
     }
     let coefficients = |c: f64| {
         let f = fresnel::fresnel(n1, n2, c);
-        match kind {
-            EventKind::Reflect => [f.r_s, f.r_p],
-            EventKind::Refract => [f.t_s, f.t_p],
+        match (kind, layer) {
+            (EventKind::Reflect, Some(l)) if f.total_internal_reflection => {
+                let q2_i = two_prod(n1 * c, n1 * c);
+                let q2_t = q2_i + two_prod(n2, n2) - two_prod(n1, n1);
+                let q2_3 = q2_i + two_prod(l.n_beyond, l.n_beyond) - two_prod(n1, n1);
+                let fl = fresnel::frustrated_layer(
+                    (n1, n2, l.n_beyond),
+                    (q2_i, q2_t, q2_3),
+                    l.thickness_m,
+                    l.lambda_m,
+                );
+                [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
+            }
+            (EventKind::Reflect, _) => [f.r_s, f.r_p],
+            (EventKind::Refract, _) => [f.t_s, f.t_p],
         }
     };
     let c = (d_in.dot(normal).abs() / d_in.length()).min(1.0);
@@ -160,7 +187,8 @@ pub fn intensity_rounding(
                 continue;
             };
             let normal = scene.surfaces[ev.surface].plane.normal;
-            da += tilt * fresnel_sensitivity(so, ev.kind, normal, *d_in, n_in);
+            let layer = optics.layers[ev.surface][usize::from(d_in.dot(normal) >= 0.0)];
+            da += tilt * layer_sensitivity(so, ev.kind, normal, *d_in, n_in, layer);
         }
         let term = e * (dphi + da);
         if c.coherence_id == INCOHERENT {

@@ -25,6 +25,7 @@
 //!
 //! Every function here is a pure kernel on scalars and unit vectors; angles are radians.
 
+use crate::optics::double_double::DoubleDouble;
 use glam::DVec3;
 use num_complex::Complex64;
 
@@ -135,6 +136,83 @@ pub(crate) fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> Fre
         cos_theta_t: cos_t,
         total_internal_reflection,
     }
+}
+
+/// The coefficients of a layer of index n2 and thickness d between n1 and n3, lit from n1
+/// beyond the critical angle of its top face (frustrated total reflection, docs/PHYSICS.md §5):
+/// the Airy sum with the imaginary cos θ2, per s and p.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct FrustratedLayer {
+    /// r_layer − r12 for s and p: what the evanescent coupling adds to the face's total
+    /// reflection r12 (P5, P6). Exactly 0 where e^{−2κd} underflows.
+    pub dr: [Complex64; 2],
+    /// t_layer for s and p: the field leaving the far face into n3 over the field arriving at the
+    /// top face, both at the same tangential coordinates (all phase in it; 0 when n3 too is
+    /// beyond its critical angle, where no wave leaves).
+    pub t: [Complex64; 2],
+    /// κ = (2π/λ) sqrt(−(n2 cos θ2)²), 1/m: the evanescent field decays as e^{−κz} in the layer.
+    pub kappa_per_m: f64,
+}
+
+/// [`FrustratedLayer`] from the squared normal wavevector components (n_k cos θk)², k = 1, 2, 3
+/// (in units of the vacuum wavenumber, double-double, the second negative: the tracer's
+/// `interaction::normal_wavevector_squares`), the indices, the thickness d (m) and the vacuum
+/// wavelength λ (m).
+///
+/// With the admittances a_k = n_k cos θk (s) or cos θk/n_k (p) (a2 = i|a2|, a3 imaginary when
+/// n3 is beyond its critical angle too) and E − 1 = expm1(−2κd) (no cancellation for a thin
+/// layer), the Airy sum of docs/PHYSICS.md §5 gives, with
+/// D = 2 a2 (a1 + a3) + (a1 − a2)(a2 − a3)(E − 1),
+///
+/// ```text
+/// r − r12 = 4 a1 a2 (a2 − a3) e^{−2κd} / ((a1 + a2) D)
+/// t       = 4 a1 a2 e^{−κd} / D        (× n1/n3 for p)
+/// ```
+///
+/// (r − r12 is the exact difference of the two closed forms, without subtracting them), so the
+/// reflected wave r12 + (r − r12) reduces bit for bit to the total reflection r12 where the
+/// coupling is below half an ulp of it.
+pub fn frustrated_layer(
+    (n1, n2, n3): (f64, f64, f64),
+    (q2_1, q2_2, q2_3): (DoubleDouble, DoubleDouble, DoubleDouble),
+    thickness_m: f64,
+    lambda_m: f64,
+) -> FrustratedLayer {
+    let q1 = q2_1.sqrt().to_f64();
+    let q2 = (-q2_2).sqrt().to_f64();
+    let (q3, q3_imaginary) = if q2_3.hi >= 0.0 {
+        (q2_3.sqrt().to_f64(), false)
+    } else {
+        ((-q2_3).sqrt().to_f64(), true)
+    };
+    let kappa = std::f64::consts::TAU * q2 / lambda_m;
+    let decay = 2.0 * kappa * thickness_m;
+    let (e, em1, half) = ((-decay).exp(), (-decay).exp_m1(), (-0.5 * decay).exp());
+    let mut out = FrustratedLayer {
+        dr: [Complex64::from(0.0); 2],
+        t: [Complex64::from(0.0); 2],
+        kappa_per_m: kappa,
+    };
+    // s: a_k = q_k; p: a_k = q_k/n_k².
+    let weights = [(1.0, 1.0, 1.0), (n1 * n1, n2 * n2, n3 * n3)];
+    for (k, (w1, w2, w3)) in weights.into_iter().enumerate() {
+        let a1 = Complex64::from(q1 / w1);
+        let a2 = Complex64::new(0.0, q2 / w2);
+        let a3 = if q3_imaginary {
+            Complex64::new(0.0, q3 / w3)
+        } else {
+            Complex64::from(q3 / w3)
+        };
+        let den = a2 * (a1 + a3) * 2.0 + (a1 - a2) * (a2 - a3) * em1;
+        out.dr[k] = a1 * a2 * (a2 - a3) * (4.0 * e) / ((a1 + a2) * den);
+        out.t[k] = if q3_imaginary {
+            Complex64::from(0.0)
+        } else {
+            let t = a1 * a2 * (4.0 * half) / den;
+            if k == 0 { t } else { t * (n1 / n3) }
+        };
+    }
+    out
 }
 
 impl FresnelCoefficients {

@@ -44,6 +44,23 @@ pub enum SurfaceOptics {
     },
 }
 
+/// A layer behind a face: the slab between the face and a parallel interface (its
+/// `partner`, a plate's or film's other face) at distance `thickness_m`, with index `n_beyond`
+/// past the partner, at vacuum wavelength `lambda_m` ([`crate::scene::Scene::layer_behind`]).
+/// Beyond the face's critical angle the evanescent field in it couples to the far face
+/// (frustrated total reflection, docs/PHYSICS.md §5).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Layer {
+    /// Index of the layer's far face in its scene.
+    pub partner: usize,
+    /// Thickness of the layer along the normal (m).
+    pub thickness_m: f64,
+    /// Index of the medium beyond the far face.
+    pub n_beyond: f64,
+    /// Vacuum wavelength (m) the indices are taken at.
+    pub lambda_m: f64,
+}
+
 /// The local description of one ray–surface encounter.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct InterfaceHit {
@@ -57,6 +74,10 @@ pub struct InterfaceHit {
     pub optics: SurfaceOptics,
     /// What the children keep of the parent's coherence.
     pub coherence: CoherenceRules,
+    /// The layer behind the face for light arriving from its front (`[0]`) and from its back
+    /// (`[1]`), if any ([`Layer`]): under total internal reflection into it the reflected child
+    /// takes the layer's frustrated coefficients ([`fresnel::frustrated_layer`]).
+    pub layers: [Option<Layer>; 2],
 }
 
 /// The result of an interaction.
@@ -182,7 +203,7 @@ impl Encounter {
         // leaving a film at near-grazing outside) keeps its digits.
         let (q2_i, q2_t) = normal_wavevector_squares(d_i, hit.normal, (n1, n2), carried);
         let cos_theta_i = (q2_i.sqrt().to_f64() / n1).min(1.0);
-        let coefficients = match (hit.optics, model) {
+        let mut coefficients = match (hit.optics, model) {
             (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
             (SurfaceOptics::Splitter { reflectance, .. }, _) => {
                 fresnel::ideal_splitter(reflectance, d_i.dot(hit.normal) < 0.0)
@@ -198,6 +219,28 @@ impl Encounter {
                 fresnel::paper_rules(n1, n2, cos_theta_i)
             }
         };
+        // Total internal reflection into a layer: the Airy sum with imaginary cos θ2
+        // (docs/PHYSICS.md §5, frustrated total reflection). The paper's rung writes its TIR
+        // phases in the opposite time convention (the complex conjugates of P5, P6,
+        // [`fresnel::paper_rules`]), so it takes the conjugate of the coupling's term.
+        let layer = hit.layers[usize::from(d_i.dot(hit.normal) >= 0.0)];
+        if let (Some(l), SurfaceOptics::Dielectric { .. }) = (layer, hit.optics)
+            && q2_t.hi < 0.0
+        {
+            let q2_3 = q2_i + two_prod(l.n_beyond, l.n_beyond) - two_prod(n1, n1);
+            let f = fresnel::frustrated_layer(
+                (n1, n2, l.n_beyond),
+                (q2_i, q2_t, q2_3),
+                l.thickness_m,
+                l.lambda_m,
+            );
+            let (dr_s, dr_p) = match model {
+                CoefficientModel::Vector => (f.dr[0], f.dr[1]),
+                CoefficientModel::PaperRules => (f.dr[0].conj(), f.dr[1].conj()),
+            };
+            coefficients.r_s += dr_s;
+            coefficients.r_p += dr_p;
+        }
         Encounter {
             d_i,
             s: fresnel::s_of_plane_of_incidence(d_i, hit.normal),

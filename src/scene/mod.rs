@@ -8,7 +8,7 @@
 pub mod geometry;
 pub mod source;
 
-use crate::optics::interaction::SurfaceOptics;
+use crate::optics::interaction::{Layer, SurfaceOptics};
 use crate::optics::material::{CoherenceRules, IndexError, Medium};
 use crate::scene::geometry::{Extent, Plane, Rect};
 use crate::scene::source::Source;
@@ -172,6 +172,10 @@ pub struct SceneOptics {
     pub ambient_index: f64,
     /// Each surface's optics there, in the order of [`Scene::surfaces`].
     pub surfaces: Vec<Option<SurfaceOptics>>,
+    /// Per surface, the layer behind it for light arriving from its front (`[0]`) and from its
+    /// back (`[1]`) ([`Scene::layer_behind`]), with the index beyond the layer at `lambda_m`:
+    /// what frustrated total reflection couples to (docs/PHYSICS.md §5).
+    pub layers: Vec<[Option<Layer>; 2]>,
 }
 
 impl Scene {
@@ -194,7 +198,113 @@ impl Scene {
                 .iter()
                 .map(|s| s.optics(lambda_m))
                 .collect::<Result<_, _>>()?,
+            layers: (0..self.surfaces.len())
+                .map(|i| {
+                    let side = |from_front| {
+                        self.layer_behind(i, from_front)
+                            .map(|(partner, thickness_m, beyond)| {
+                                Ok::<_, IndexError>(Layer {
+                                    partner,
+                                    thickness_m,
+                                    n_beyond: beyond.index(lambda_m)?,
+                                    lambda_m,
+                                })
+                            })
+                            .transpose()
+                    };
+                    Ok([side(true)?, side(false)?])
+                })
+                .collect::<Result<_, IndexError>>()?,
         })
+    }
+
+    /// The layer behind interface `i` for light arriving from its front (`from_front`) or its
+    /// back: the nearest surface on the far side that is parallel to it (normal bitwise ±), an
+    /// interface whose near medium is the medium behind `i` (a plate's or film's other face),
+    /// with no other surface entering the slab between them. Returns the partner's index, the
+    /// layer's thickness d (m; exactly the difference of the heights for the two faces of a
+    /// plate, [`Plane::separation_from`]) and the medium beyond the partner. `None` for
+    /// anything else (an unbounded half-space behind, a wedge, a slab another surface cuts):
+    /// there the tracer keeps the ray model's total reflection (docs/PHYSICS.md §5).
+    pub fn layer_behind(&self, i: usize, from_front: bool) -> Option<(usize, f64, Medium)> {
+        let face = &self.surfaces[i];
+        let SurfaceKind::Interface { front, back, .. } = &face.kind else {
+            return None;
+        };
+        let layer_medium = if from_front { back } else { front };
+        let n = face.plane.normal;
+        // Depth below face i along the direction into the layer (−n from the front).
+        let into = if from_front { -1.0 } else { 1.0 };
+        let depth_of_plane = |p: &Plane| -> Option<f64> {
+            let offset = if p.anchor == face.plane.anchor {
+                if p.normal == n {
+                    p.height_m - face.plane.height_m
+                } else if p.normal == -n {
+                    -p.height_m - face.plane.height_m
+                } else {
+                    return None;
+                }
+            } else if p.normal == n || p.normal == -n {
+                face.plane.signed_distance(p.point)
+            } else {
+                return None;
+            };
+            Some(into * offset)
+        };
+        // The nearest parallel surface strictly behind the face.
+        let (j, d) = self
+            .surfaces
+            .iter()
+            .enumerate()
+            .filter(|&(j, _)| j != i)
+            .filter_map(|(j, s)| depth_of_plane(&s.plane).map(|d| (j, d)))
+            .filter(|&(_, d)| d > 0.0)
+            .min_by(|a, b| a.1.total_cmp(&b.1))?;
+        let partner = &self.surfaces[j];
+        let SurfaceKind::Interface {
+            front: pf,
+            back: pb,
+            ..
+        } = &partner.kind
+        else {
+            return None;
+        };
+        if !matches!(partner.extent, Extent::Unbounded) {
+            return None;
+        }
+        // The partner's side facing face i: its front if its normal points back toward i.
+        let faces_i = if from_front {
+            partner.plane.normal == n
+        } else {
+            partner.plane.normal == -n
+        };
+        let (near, beyond) = if faces_i { (pf, pb) } else { (pb, pf) };
+        if near != layer_medium {
+            return None;
+        }
+        // No other surface may enter the slab 0 < depth < d (conservatively: any part of it).
+        let depth = |x: DVec3| into * face.plane.signed_distance(x);
+        let enters = |s: &Surface| match s.extent {
+            Extent::Unbounded => depth_of_plane(&s.plane).is_none_or(|e| e > 0.0 && e < d),
+            Extent::Rect { u, v, rect } => {
+                let c = s.plane.point + rect.center_uv[0] * u + rect.center_uv[1] * v;
+                let corners = [(-1.0, -1.0), (-1.0, 1.0), (1.0, -1.0), (1.0, 1.0)].map(|(a, b)| {
+                    depth(c + a * rect.half_width_m * u + b * rect.half_height_m * v)
+                });
+                let lo = corners.iter().copied().fold(f64::INFINITY, f64::min);
+                let hi = corners.iter().copied().fold(f64::NEG_INFINITY, f64::max);
+                lo < d && hi > 0.0
+            }
+        };
+        if self
+            .surfaces
+            .iter()
+            .enumerate()
+            .any(|(k, s)| k != i && k != j && enters(s))
+        {
+            return None;
+        }
+        Some((j, d, beyond.clone()))
     }
 
     /// Add an unbounded interface; returns its index.

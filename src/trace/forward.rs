@@ -295,6 +295,7 @@ fn follow(
         normal: surf.plane.normal,
         optics: so,
         coherence: surf.coherence(),
+        layers: optics.layers[j],
     };
     let children = interact(
         &ray,

@@ -270,6 +270,7 @@ fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> Inter
         normal: surf.plane.normal,
         optics: optics.surfaces[ev.surface].expect("solved paths only meet non-opaque surfaces"),
         coherence: surf.coherence(),
+        layers: optics.layers[ev.surface],
     }
 }
 

@@ -127,6 +127,7 @@ fn hit_for(
         normal,
         optics: SurfaceOptics::Dielectric { n_front, n_back },
         coherence: rules,
+        layers: [None; 2],
     }
 }
 

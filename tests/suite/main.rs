@@ -47,5 +47,6 @@ mod truth_geometry;
 mod truth_grazing;
 mod truth_plates;
 mod truth_thick_plates;
+mod truth_tunnelling;
 mod unpolarized;
 mod young_two_point;

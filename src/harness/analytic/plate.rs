@@ -111,7 +111,9 @@ impl Incidence {
 /// neglected, so that the ray model's total reflection (R = |r12|² = 1, T = 0) is the exact
 /// answer to within it. It is 1/10 of the smallest tolerance the gate derives (1e-12,
 /// `harness::conditioning`): a scene whose exact and ray-model answers differ by more is refused,
-/// never compared against a closed form that knows what the tracer cannot trace.
+/// never compared against a closed form that knows what the tracer cannot trace. Since the
+/// tracer reflects with the layer's frustrated r_layer (`optics::fresnel::frustrated_layer`)
+/// this applies only to the transmittance (the tunnelled wave is not traced).
 pub const FTIR_NEGLIGIBLE: f64 = 1e-13;
 
 /// The difference between the exact Airy answer and the ray model's total reflection beyond
@@ -536,6 +538,37 @@ impl TwoBeamPlate {
         }
     }
 
+    /// [`TwoBeamPlate::beam_top`] at vacuum wavelength `lambda_m` with the plate's evanescent
+    /// coupling: beyond the critical angle of the top face (an ambient denser than the plate)
+    /// the top beam's amplitude is the plate's plane-wave reflection r_layer at its angle (the
+    /// Airy sum with imaginary cos θ2, [`Film::r`], frustrated total reflection,
+    /// docs/PHYSICS.md §5) instead of the face's r12; elsewhere [`TwoBeamPlate::beam_top`].
+    pub fn beam_top_frustrated(&self, x_m: f64, lambda_m: f64) -> Beam {
+        let beam = self.beam_top(x_m);
+        let h = self.h_src_m + self.h_obs_m;
+        let sin_sq = precise::div(
+            TwoFloat::new_mul(x_m, x_m),
+            TwoFloat::new_mul(x_m, x_m) + TwoFloat::new_mul(h, h),
+        );
+        let inc = Incidence {
+            cos_sq: TwoFloat::from(1.0) - sin_sq,
+        };
+        let layer = Film {
+            n1: self.n1,
+            n2: self.n2,
+            n3: self.n1,
+            thickness_m: self.thickness_m,
+        };
+        if self.n1 <= self.n2 || !layer.terms(inc, lambda_m, Pol::S).evanescent {
+            return beam;
+        }
+        Beam {
+            amp_s: layer.r(inc, lambda_m, Pol::S),
+            amp_p: layer.r(inc, lambda_m, Pol::P),
+            ..beam
+        }
+    }
+
     /// Beam 2: refracted in, reflected at the bottom face, refracted out. Parametrised by the
     /// entry point's lateral offset `a` (no trigonometry): first leg L1 = √(a² + h_s²),
     /// sin θ = a/L1, sin θt = (n1/n2) sin θ, exit at X_e = a + 2 d tan θt, last leg
@@ -635,7 +668,10 @@ impl TwoBeamPlate {
 
     /// The two models: the p cross term with cos(θ1 − θ2) to the power `p_overlap_power`.
     fn unpolarized(&self, x_m: f64, lambda_m: f64, p_overlap_power: i32) -> f64 {
-        let (b1, (b2, op2)) = (self.beam_top(x_m), self.beam_bottom_precise(x_m));
+        let (b1, (b2, op2)) = (
+            self.beam_top_frustrated(x_m, lambda_m),
+            self.beam_bottom_precise(x_m),
+        );
         let op1 = precise::distance(
             glam::DVec3::new(x_m, self.h_src_m, 0.0),
             glam::DVec3::new(0.0, -self.h_obs_m, 0.0),

@@ -348,13 +348,12 @@ pub fn value(
                 h_obs_m: plane.signed_distance(p),
             };
             // Beyond the critical angle of the top face (an ambient denser than the plate) the
-            // top beam is totally reflected (|r12| = 1, complex phase) and the beam through the
-            // plate still exists, entering at a smaller angle nearer the source. The plate then
-            // also carries an evanescent wave to its far face (frustrated total reflection),
-            // which zero-thickness rays do not trace: its coupling at the top beam's angle moves
-            // the top beam's amplitude by |r − r12| (the plane-wave Airy sum with imaginary
-            // cos θ2, docs/PHYSICS.md §5), the intensity by at most (4 + |r − r12|)|r − r12| of
-            // the source's. Compared only where that is below FTIR_NEGLIGIBLE.
+            // top beam is totally reflected and the beam through the plate still exists,
+            // entering at a smaller angle nearer the source. The plate then also carries an
+            // evanescent wave to its far face (frustrated total reflection): the top beam's
+            // amplitude is the plate's r_layer at its angle (the plane-wave Airy sum with
+            // imaginary cos θ2, docs/PHYSICS.md §5, `TwoBeamPlate::beam_top_frustrated`), as the
+            // tracer applies it at the face (`fresnel::frustrated_layer`).
             let x = horiz.length();
             let h = t.h_src_m + t.h_obs_m;
             let sin1_sq = precise::div(
@@ -370,18 +369,7 @@ pub fn value(
                 n3: t.n1,
                 thickness_m: t.thickness_m,
             };
-            if let Some(fr) = layer.frustration(inc, lambda_m) {
-                let deviation = (4.0 + fr.amplitude) * fr.amplitude;
-                if deviation > FTIR_NEGLIGIBLE {
-                    return Err(frustrated_refusal(
-                        &layer,
-                        &fr,
-                        deviation,
-                        inc,
-                        "the two-beam intensity",
-                        "plate",
-                    ));
-                }
+            if layer.frustration(inc, lambda_m).is_some() {
                 // The beam through the plate must enter below the critical angle, at sin θ <
                 // n2/n1, so it covers the rest of the lateral distance grazing inside the
                 // plate: tan θt ≥ (x − (h_s + h_o) tan θc)/(2d). Its entry point is found by a
@@ -549,28 +537,23 @@ fn airy(
     let inc = Incidence::between(d, nrm);
     let reflected = dir.dot(nrm).signum() != d.dot(nrm).signum();
     // Beyond the critical angle of the top face (frustrated total reflection): the exact Airy
-    // sum with imaginary cos θ2 differs from the ray model's total reflection by O(e^{−2κd});
-    // compared only where that is below FTIR_NEGLIGIBLE of the source intensity.
-    if let Some(fr) = f.frustration(inc, lambda_m) {
-        let deviation = if reflected {
-            fr.reflectance
-        } else {
-            fr.transmittance
-        };
-        if deviation > FTIR_NEGLIGIBLE {
+    // sum with imaginary cos θ2. The tracer applies it to the reflected wave at the top face
+    // (`fresnel::frustrated_layer`), so R is compared at any coupling. It does not yet start a
+    // tunnelled wave on the far face: T is compared only where it is below FTIR_NEGLIGIBLE of
+    // the source intensity (the ray model's T = 0), else refused.
+    if !reflected && let Some(fr) = f.frustration(inc, lambda_m) {
+        if fr.transmittance > FTIR_NEGLIGIBLE {
             return Err(frustrated_refusal(
                 &f,
                 &fr,
-                deviation,
+                fr.transmittance,
                 inc,
-                if reflected { "R" } else { "T" },
+                "T",
                 "film",
             ));
         }
-        if !reflected {
-            // The ray model's T = 0, exact to FTIR_NEGLIGIBLE (the probe is dark by physics).
-            return Ok(0.0);
-        }
+        // The ray model's T = 0, exact to FTIR_NEGLIGIBLE (the probe is dark by physics).
+        return Ok(0.0);
     }
     // Split each channel into s and p at the film (one plane of incidence for every beam).
     let s = fresnel::s_direction(d, nrm, src.channels()[0].field_direction(d));

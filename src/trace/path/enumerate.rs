@@ -115,6 +115,7 @@ fn explore(
         normal,
         optics: so,
         coherence: scene.surfaces[j].coherence(),
+        layers: optics.layers[j],
     };
     let (n1, n2) = interaction::indices_for(so, normal, d, n);
     let is_internal = n != optics.ambient_index;

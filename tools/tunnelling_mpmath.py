@@ -1,0 +1,131 @@
+#!/usr/bin/env python3
+"""50-digit values of layers traced beyond their top face's critical angle (frustrated total
+reflection, PHYSICS.md sec. 5) for tests/suite/truth_tunnelling.rs.
+
+Airy cases (tests/tunnelling/*.json with an `airy` reference): each case file is evaluated from
+its own numbers at every probe point, as tools/precision_classes_mpmath.py evaluates its `airy`
+cases (the incidence direction built in binary64 as `case::build::incidence_direction` builds
+it, cos t1 = |d.N|/(|d||N|) of the binary64 vectors in 50 digits, thickness um*1e-6 and
+wavelength nm*1e-9 as the binary64 products the loader forms), then the Airy sum of
+tools/airy_mpmath.py with the complex cos t2 = +i sqrt(n1^2 sin^2 t1 - n2^2)/n2 (e^{-i w t}):
+R, mixed over s and p by the source's polarization (linear at angle a from the s axis: cos^2 a
+of s; the paper's two unpolarized channels: 1/2 each).
+
+Two-beam case (TWO_BEAM below, the scene tests/suite/truth_tunnelling.rs builds): a point source
+over a layer of index n2 < n1 between two half-spaces n1, the top beam beyond the critical angle:
+its amplitude is the layer's plane-wave reflection r_layer at its angle (the Airy sum with
+complex cos t2, not the face's r12), the beam through the layer (entering below the critical
+angle, entry point by findroot) as in tools/beyond_critical_mpmath.py; unpolarized light in
+the paper's two channels.
+
+Run: python3 tools/tunnelling_mpmath.py > tests/data/tunnelling_mpmath.csv
+"""
+import glob
+import json
+import math
+import os
+import sys
+
+import mpmath as mp
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from airy_mpmath import airy, coeffs  # noqa: E402
+from beyond_critical_mpmath import fresnel  # noqa: E402
+from precision_classes_mpmath import index, normalize, sweep_points  # noqa: E402
+
+mp.mp.dps = 50
+HERE = os.path.dirname(os.path.abspath(__file__))
+CASES = os.path.join(HERE, "..", "tests", "tunnelling")
+
+
+def airy_case(case):
+    sw = case["probe"]["sweep"]
+    par = sw["parameter"]["incidence_angle_deg"]
+    side = sw["observe"]["far_field"]["side"]
+    plate = case["scene"]["surfaces"][0]["plate"]
+    n1, n2, n3 = (index(case, plate[k]) for k in ("above", "medium", "below"))
+    d = plate["thickness_um"] * 1e-6
+    lam = case["light"]["monochrome"]["wavelength_nm"] * 1e-9
+    pol = case["scene"]["sources"][0]["polarization"]
+    if "linear" in pol:
+        fs = mp.cos(mp.mpf(math.radians(pol["linear"]["angle_deg"]))) ** 2
+    else:
+        fs = mp.mpf(1) / 2
+    normal = normalize(plate["normal"])
+    out = []
+    for deg in sweep_points(sw):
+        t = math.radians(deg)
+        n = normalize(par["surface_normal"])
+        ax = par["in_plane_axis"]
+        k = ax[0] * n[0] + ax[1] * n[1] + ax[2] * n[2]
+        a = normalize([ax[i] - k * n[i] for i in range(3)])
+        dv = normalize([math.sin(t) * a[i] - math.cos(t) * n[i] for i in range(3)])
+        D = [mp.mpf(x) for x in dv]
+        N = [mp.mpf(x) for x in normal]
+        dot = sum(x * y for x, y in zip(D, N))
+        c1 = abs(dot) / mp.sqrt(sum(x * x for x in D) * sum(x * x for x in N))
+        Rs, Ts = airy(n1, n2, n3, d, c1, lam, 0)
+        Rp, Tp = airy(n1, n2, n3, d, c1, lam, 1)
+        v = fs * Rs + (1 - fs) * Rp if side == "reflected" else fs * Ts + (1 - fs) * Tp
+        out.append(v)
+    return out
+
+
+def r_layer(n1, n2, d, c1, lam, pol):
+    """The plane-wave reflection of a layer n2 (thickness d) between two half-spaces n1."""
+    r12, t12, c2 = coeffs(n1, n2, c1, pol)
+    r21, t21, _ = coeffs(n2, n1, c2, pol)
+    r23, _, _ = coeffs(n2, n1, c2, pol)
+    e = mp.expjpi(4 * n2 * d * c2 / lam)
+    return r12 + t12 * t21 * r23 * e / (1 - r21 * r23 * e)
+
+
+def two_beam(n1, n2, d, hs, ho, x, lam):
+    n1, n2, d, hs, ho, x, lam = map(mp.mpf, (n1, n2, d, hs, ho, x, lam))
+    ac = n2 * hs / mp.sqrt(n1 * n1 - n2 * n2) if n1 > n2 else x
+
+    def land(a):
+        st = n1 / n2 * a / mp.sqrt(a * a + hs * hs)
+        return a + 2 * d * st / mp.sqrt(1 - st * st) + ho * a / hs - x
+
+    a = mp.findroot(land, (mp.mpf(0), min(x, ac * (1 - mp.mpf(10) ** -40))), solver="anderson")
+    l1 = mp.sqrt(a * a + hs * hs)
+    st = n1 / n2 * a / l1
+    ct = mp.sqrt(1 - st * st)
+    xe = a + 2 * d * st / ct
+    op2 = n1 * l1 + 2 * n2 * d / ct + n1 * mp.sqrt((x - xe) ** 2 + ho * ho)
+    op1 = n1 * mp.sqrt(x * x + (hs + ho) ** 2)
+    c_top = (hs + ho) / mp.sqrt(x * x + (hs + ho) ** 2)
+    r1s, r1p = r_layer(n1, n2, d, c_top, lam, 0), r_layer(n1, n2, d, c_top, lam, 1)
+    _, _, t12s, t12p = fresnel(n1, n2, hs / l1)
+    r23s, r23p, t21s, t21p = fresnel(n2, n1, ct)
+    a2s, a2p = t12s * r23s * t21s, t12p * r23p * t21p
+    e = mp.expjpi(2 * (op1 - op2) / lam)
+    overlap = mp.cos(mp.atan2(x, hs + ho) - mp.atan2(a, hs))
+    i_s = abs(r1s * e + a2s) ** 2
+    i_p = abs(r1p) ** 2 + abs(a2p) ** 2 + 2 * mp.re(r1p * mp.conj(a2p) * e) * overlap
+    return (i_s + i_p) / 2
+
+
+# (name, n1, n2, thickness_m, h_src_m, h_obs_m, lambda_m, [x_m ...]) as the loader forms them
+# (thickness_um * 1e-6, nm * 1e-9): a dense ambient (1.5) over a 2 um air gap, source 1 cm and
+# probe 2 cm above it; the top beam 1 mm beyond the lateral distance of the critical angle.
+TWO_BEAM = [
+    ("two_beam_gap", 1.5, 1.0, 2.0 * 1e-6, 0.01, 0.02, 500.0 * 1e-9, [0.02783281572999748]),
+]
+
+
+def main():
+    print("case,point,value")
+    for path in sorted(glob.glob(os.path.join(CASES, "*.json"))):
+        case = json.load(open(path))
+        name = case["name"]
+        for i, v in enumerate(airy_case(case)):
+            print(f"{name},{i},{mp.nstr(v, 30)}")
+    for name, n1, n2, d, hs, ho, lam, xs in TWO_BEAM:
+        for k, x in enumerate(xs):
+            print(f"{name},{k}," + mp.nstr(two_beam(n1, n2, d, hs, ho, x, lam), 30))
+
+
+if __name__ == "__main__":
+    main()
