@@ -114,7 +114,7 @@ pub fn fresnel(n1: f64, n2: f64, cos_theta_i: f64) -> FresnelCoefficients {
 /// [`fresnel`] with cos²θt given (negative under total internal reflection): for a caller that
 /// knows it better than [`cos2_theta_t`] can form it from an f64 cos θi (the tracer's normal
 /// wavevector carried in double-double between parallel faces, docs/PHYSICS.md §8).
-pub(crate) fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> FresnelCoefficients {
+pub fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> FresnelCoefficients {
     let total_internal_reflection = c2t < 0.0;
     // Evanescent branch: cos θt = +i sqrt(-cos²θt) for the e^{-iωt} convention.
     let cos_t = if total_internal_reflection {
