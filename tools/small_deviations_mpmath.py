@@ -9,7 +9,8 @@ tests/fuzz_found/), each evaluated from the case file's own binary64 numbers.
 * two_beam_plate (fuzz_two_beam_plate_s1_181, a 0.1 nm plate at a dark fringe): the two-beam
   intensity of tools/two_beam_plate_found_mpmath.py (paper two-channel unpolarized source, the
   entry point solved by findroot, heights and lateral distance along the plate normal).
-* wedge (fuzz_wedge_s1_{109,291}): the independent 50-digit ray trace of tools/wedge_mpmath.py
+* wedge (fuzz_wedge_s1_{109,291} from `--count 300 --seed 1`, {538,638,866} from
+  `--family wedge --count 1000 --seed 1`): the independent 50-digit ray trace of tools/wedge_mpmath.py
   (`intensity`), the bottom face through (0, 0, -t0) with the binary64 normal
   (sin a, 0, cos a), a = radians(angle_deg), as the scene builder makes it (hinge along y, top
   normal +z, top point at the origin in both scenes).
@@ -97,6 +98,9 @@ CASES = [
     ("fuzz_two_beam_plate_s1_181", two_beam_case),
     ("fuzz_wedge_s1_109", wedge_case),
     ("fuzz_wedge_s1_291", wedge_case),
+    ("fuzz_wedge_s1_538", wedge_case),
+    ("fuzz_wedge_s1_638", wedge_case),
+    ("fuzz_wedge_s1_866", wedge_case),
 ]
 
 print("case,point,value")
