@@ -18,7 +18,7 @@
 //! * wedge #109, #291 (and #538, #638, #866 of `--family wedge --count 1000 --seed 1`): the
 //!   tracer was 3e-12 … 1.2e-11 off 50 digits, the closed form within 8e-16: the path solver
 //!   landed a plane wave's beam 1.5e-11 m off a target 1e-4 m above the wedge and drew the last
-//!   segment to the target, a kink of m²/(2L) = 1.1e-18 m of path; now ≤ 8e-16.
+//!   segment to the target, a kink of m²/(2L) = 1.1e-18 m of path, now subtracted; ≤ 8e-16.
 
 use fringe::accumulate::fidelity::Fidelity;
 use fringe::harness::analytic::plate::{Film, Pol, TwoBeamPlate};
@@ -246,7 +246,8 @@ fn a_nm_film_at_the_origin_reflects_as_50_digits() {
 /// tracer was 1e-11, 3e-12, 6.8e-12, 3.4e-12, 1.2e-11 off: the path solver accepted the bottom
 /// beam 1.5e-11 m off its target (1e-12 of the 25 m scene) without a Newton step and drew the
 /// last segment, 1e-4 m long, to the target: a kink whose m²/(2L) = 1.1e-18 m of optical path
-/// is 1e-11 of I. Newton now goes on until that kink is below 1e-25 m (`trace::path`).
+/// is 1e-11 of I. A plane wave between plane faces stays plane, so the path to the target's
+/// wavefront is (P − X)·d exactly: the kink is now subtracted (`trace::path::solve`).
 #[test]
 fn long_wedges_trace_as_50_digits() {
     let truth = truth();

@@ -356,10 +356,6 @@ fn coordinate_floor(target: DVec3, points: &[DVec3]) -> f64 {
     COORDINATE_ULPS * f64::EPSILON * largest
 }
 
-/// The optical path error (m) a point target's landing may leave through the kink of the last
-/// segment ([`solve`]): 1e-25 m, 3e-18 rad at 200 nm.
-const KINK_PATH_M: f64 = 1e-25;
-
 /// The smallest finite-difference step of the solver's Jacobian, relative to the launch
 /// model's step (`LaunchModel::step`): 1e-6 of the scene scale shrunk by at most 1e-9.
 const JACOBIAN_STEP_FLOOR: f64 = 1e-9;
@@ -620,25 +616,7 @@ pub fn solve(
     let mut r = residual(&g0, &target, frame).ok_or(PathError::Behind)?;
     let mut r_norm = norm2(r);
     let mut iterations = 0;
-    // The last segment is drawn from the last event point to the target itself (below), a kink
-    // of angle m/L for a landing error m over a last segment of length L: an optical path
-    // error of m²/(2L) (second order, Fermat), which a short last segment makes first-rate. A
-    // small-angle wedge seen 1e-4 m above its top face was accepted at m = 1.5e-11 m (1e-12 of
-    // the scene's 25 m), 1.1e-18 m of path, 1e-11 of its intensity (`fringe fuzz --family
-    // wedge --seed 1`, scene 538, `tests/suite/truth_small_deviations.rs`). Newton goes on
-    // until m²/(2L) ≤ KINK_PATH_M or it stalls at the coordinates' rounding; acceptance below
-    // stays at `tol`. Not through parallel planes from a point source: Snell's invariant,
-    // solved in double-double, launches that path better than f64 Newton steps can (pushing
-    // them on made grazing two-beam plates worse, `fringe fuzz --family two_beam_plate`).
-    let aim = match target {
-        Target::Point(p) if stack.is_none() => {
-            let last = (p - *g0.points.last().unwrap()).length();
-            tol.min((2.0 * last * KINK_PATH_M).sqrt())
-                .max(coordinate_floor(p, &g0.points))
-        }
-        _ => tol,
-    };
-    while r_norm > aim && iterations < opts.max_iterations {
+    while r_norm > tol && iterations < opts.max_iterations {
         iterations += 1;
         let Some(j) = jacobian(x, &mut scratch) else {
             break;
@@ -726,8 +704,28 @@ pub fn solve(
         Emitter::PlaneWave {
             direction,
             reference_point,
-        } => projection(direction.normalize(), g.points[0], reference_point)
-            .mul_f64(optics.ambient_index),
+        } => {
+            let mut start = projection(direction.normalize(), g.points[0], reference_point)
+                .mul_f64(optics.ambient_index);
+            // The last segment is drawn from the last event point X to the target P (above),
+            // a kink for a landing error m: |P − X| exceeds the wave's own path to P's
+            // wavefront, (P − X)·d, by m²/(2L). Between plane faces a plane wave stays plane, so
+            // (P − X)·d is exact; the difference, −|v⊥|²/(|v| + v·d) with v = P − X, is
+            // subtracted here (a small-angle wedge seen 1e-4 m above its face was accepted
+            // 1.5e-11 m off its target, 1.1e-18 m of path, 1e-11 of I: `fringe fuzz --family
+            // wedge --seed 1` scene 538, `tests/suite/truth_small_deviations.rs`).
+            if let (Target::Point(p), [.., x, _]) = (target, &g.points[..]) {
+                let d = g.dirs.last().unwrap().normalize();
+                let v = p - *x;
+                let along = v.dot(d);
+                let perp = (v - along * d).length_squared();
+                let kink = -perp / (v.length() + along);
+                if kink.is_finite() {
+                    start += DoubleDouble::from(kink * g.indices.last().unwrap());
+                }
+            }
+            start
+        }
         // A line source's launch point is an f64 point near the line, off it by up to ~ulp of its
         // coordinates (2.8e-14 m at 183 m): measured from there the first segment would carry that
         // as a first-order path error. The wave's phase at the first point is n times its
