@@ -205,8 +205,9 @@ pub struct SolvedPath {
     pub optical_path: DoubleDouble,
     /// The optical path already travelled at the launch point `points[0]` (m): 0, except for a
     /// plane wave into the far field launched off its reference wavefront
-    /// ([`plane_wave_launch`]), where it is n·d·(launch − reference). Included in
-    /// `optical_path`; rays start with it.
+    /// ([`plane_wave_launch`]), where it is n·d·(launch − reference); for a plane wave toward a
+    /// point it also holds the (negative) kink of the last segment drawn to the target
+    /// (−|v⊥|²/(|v| + v·d), [`solve`]). Included in `optical_path`; rays start with it.
     pub start_optical_path: DoubleDouble,
     /// Distance between the landing point and the target (m); for the far field the sine of the
     /// angle between the exit and target directions.
