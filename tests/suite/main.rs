@@ -48,5 +48,6 @@ mod truth_grazing;
 mod truth_plates;
 mod truth_thick_plates;
 mod truth_tunnelling;
+mod truth_small_deviations;
 mod unpolarized;
 mod young_two_point;

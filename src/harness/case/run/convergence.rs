@@ -91,7 +91,7 @@ pub(super) fn convergence(
                     crate::harness::analytic::plate::Pol::P,
                 ]
                 .into_iter()
-                .map(|p| f.r_tail_bound(cos1, lambda, p, orders))
+                .map(|p| f.tail_bound(cos1, lambda, p, orders))
                 .fold(0.0f64, f64::max);
                 let bound = 2.0 * exact.sqrt() * tau + tau * tau;
                 Ok(((traced - exact).abs(), bound))

@@ -382,6 +382,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
         // `trace::intensity` of each level, with the accumulator and contributions reused
         // (the same sums: a cleared accumulator is a new one).
         let reference = arr.first().map(|a| a.vector.optical_path);
+        let mut vector_intensity = None;
         for l in levels {
             contributions.clear();
             if let Some(r) = reference {
@@ -389,7 +390,21 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             }
             acc.clear();
             acc.extend(&contributions);
-            *out.intensity.get_mut(l).unwrap() += w * factor * acc.intensity();
+            let i = acc.intensity();
+            if *l == Fidelity::Vector {
+                vector_intensity = Some(i);
+            }
+            *out.intensity.get_mut(l).unwrap() += w * factor * i;
+        }
+        // A sum cut where the Airy tail bound falls below `airy_tail_epsilon` (not closed) is
+        // off the full sum by what the case asked to leave out (budget::tail_truncation).
+        if let (Some(eps), Some(i), false) = (
+            spec.trace.airy_tail_epsilon,
+            vector_intensity,
+            arr.iter().any(|a| a.tail.is_some()),
+        ) {
+            let sources = built.scene.sources.iter().map(|s| s.intensity.sqrt()).sum();
+            out.rounding += w * budget::tail_truncation(factor * i, eps, sources);
         }
         if let (Some(r), Ok(optics)) = (reference, built.scene.optics(lambda)) {
             out.rounding += w
