@@ -45,5 +45,6 @@ mod truth_beyond_critical_plates;
 mod truth_geometry;
 mod truth_grazing;
 mod truth_plates;
+mod truth_refusals;
 mod unpolarized;
 mod young_two_point;
