@@ -50,7 +50,8 @@ rows = [
     (1.5, 1.0, 0.001, 0.01, 0.02, 0.05, 550e-9),
     (1.5, 1.0, 0.001, 0.01, 0.02, 0.2, 550e-9),
 ]
-print("n1,n2,thickness_m,h_src_m,h_obs_m,x_m,lambda_m,tan_theta_t,intensity")
-for r in rows:
-    I, tan_t = intensity(*r)
-    print(",".join(repr(v) for v in r) + "," + mp.nstr(tan_t, 6) + "," + mp.nstr(I, 30))
+if __name__ == "__main__":
+    print("n1,n2,thickness_m,h_src_m,h_obs_m,x_m,lambda_m,tan_theta_t,intensity")
+    for r in rows:
+        I, tan_t = intensity(*r)
+        print(",".join(repr(v) for v in r) + "," + mp.nstr(tan_t, 6) + "," + mp.nstr(I, 30))

@@ -234,6 +234,7 @@ fn launch_ray(
         Trail::with_capacity(ledger_capacity(path)),
     );
     start_at(&mut ray, path.start_optical_path);
+    ray.normal_q2 = path.launch_normal_q2;
     ray
 }
 
@@ -415,6 +416,15 @@ impl ChannelRays {
         ChannelRays::Together { lead, frames }
     }
 
+    /// Give every ray the launch's (n cos θ)² about the first face ([`SolvedPath::launch_normal_q2`]).
+    #[inline]
+    fn carry_launch_q2(&mut self, q2: Option<(DVec3, DoubleDouble)>) {
+        match self {
+            ChannelRays::Together { lead, .. } => lead.normal_q2 = q2,
+            ChannelRays::Apart(rays) => rays.iter_mut().for_each(|r| r.normal_q2 = q2),
+        }
+    }
+
     /// Through the interaction at `hit` along the followed branch (`reflect`: the reflected
     /// one); `others` is the number of channels besides the lead. False, with the rays partly
     /// updated, where the branch does not exist ([`interact_along`] gives `None`).
@@ -502,6 +512,7 @@ fn carry(
         path.start_optical_path,
         || Trail::with_capacity(capacity),
     );
+    rays.carry_launch_q2(path.launch_normal_q2);
     let others = channels.len().saturating_sub(1);
     for (event, (ev, point)) in events_of(path).enumerate() {
         let hit = hit_at(scene, optics, ev, point);

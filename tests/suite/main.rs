@@ -49,5 +49,6 @@ mod truth_plates;
 mod truth_thick_plates;
 mod truth_tunnelling;
 mod truth_small_deviations;
+mod truth_refusals;
 mod unpolarized;
 mod young_two_point;

@@ -555,6 +555,19 @@ pub struct TwoBeamPlate {
     pub h_obs_m: f64,
 }
 
+/// Where the beam through a two-beam plate enters it, in double-double.
+#[derive(Clone, Copy, Debug)]
+struct Entry {
+    /// Lateral offset of the entry point from the foot of the source, m.
+    a: TwoFloat,
+    /// First leg L1 = sqrt(a² + h_s²), m.
+    l1: TwoFloat,
+    /// cos θt inside the plate.
+    cos_t: TwoFloat,
+    /// Lateral offset X_e of the exit point (the same face), m.
+    x_exit: TwoFloat,
+}
+
 /// One of the two beams at the observation point.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Beam {
@@ -641,6 +654,20 @@ impl TwoBeamPlate {
 
     /// [`TwoBeamPlate::beam_bottom`] with its optical path in double-double.
     fn beam_bottom_precise(&self, x_m: f64) -> (Beam, TwoFloat) {
+        let entry = if self.n1 > self.n2 {
+            self.entry_by_slope(x_m)
+        } else {
+            self.entry_by_offset(x_m)
+        };
+        self.beam_through(x_m, entry)
+    }
+
+    /// The beam through a plate denser than its ambient (n1 ≤ n2), solved for the entry point's
+    /// lateral offset `a`: X_e(a) + h_o a/h_s = x, with X_e = a + 2 d tan θt. Bisection in f64,
+    /// then one Newton step in double-double with the analytic slope
+    /// 1 + h_o/h_s + 2 d (n1/n2) h_s²/(L1³ cos³θt) (d sin θt/da = (n1/n2) h_s²/L1³,
+    /// d tan θt/d sin θt = 1/cos³θt). Returns the entry (double-double).
+    fn entry_by_offset(&self, x_m: f64) -> Entry {
         let (hs, ho, d) = (self.h_src_m, self.h_obs_m, self.thickness_m);
         let (n1, n2) = (self.n1, self.n2);
         // Landing offset of the ray entering at lateral a (f64, for the root only).
@@ -660,26 +687,99 @@ impl TwoBeamPlate {
             let l1 = (a * a + TwoFloat::new_mul(hs, hs)).sqrt();
             let st = precise::div(a * n1, l1 * n2);
             let ct = (TwoFloat::from(1.0) - st * st).sqrt();
-            (l1, ct, a + precise::div(st, ct) * (2.0 * d))
+            Entry {
+                a,
+                l1,
+                cos_t: ct,
+                x_exit: a + precise::div(st, ct) * (2.0 * d),
+            }
         };
         // One Newton step puts the entry point where f64 cannot: near grazing the amplitudes
         // depend on it to first order (cos θ = h_s/L1 is small), the optical path does not.
         let a = {
-            // The step stays on the near side of the critical entry offset
-            // a_c = n2 h_s/sqrt(n1² − n2²) of an ambient denser than the plate, where the ray
-            // would no longer enter (beyond it the landing offset is NaN).
-            let room = if n1 > n2 {
-                n2 * hs / (n1 * n1 - n2 * n2).sqrt() - a0
-            } else {
-                f64::INFINITY
-            };
-            let h = (1e-7 * a0.max(hs)).min(0.5 * room);
-            let slope = (lateral(a0 + h) - lateral(a0 - h)) / (2.0 * h);
+            let l1 = a0.hypot(hs);
+            let st = n1 / n2 * a0 / l1;
+            let ct = (1.0 - st * st).sqrt();
+            let slope = 1.0 + ho / hs + 2.0 * d * (n1 / n2) * (hs / l1).powi(2) / (l1 * ct.powi(3));
             let a0 = TwoFloat::from(a0);
-            let miss = offset(a0).2 + a0 * (ho / hs) - x_m;
+            let miss = offset(a0).x_exit + a0 * (ho / hs) - x_m;
             a0 - miss / slope
         };
-        let (l1, ct, x_e) = offset(a);
+        offset(a)
+    }
+
+    /// The beam through a plate less dense than its ambient (n1 > n2), solved for w = tan θt,
+    /// which stays conditioned as cos θt → 0: beyond the top face's critical angle the beam
+    /// enters just below it and runs grazing inside the plate (tan θt up to 1e8 and beyond in
+    /// valid scenes), where the entry offset a → a_c = n2 h_s/sqrt(n1² − n2²) is no longer
+    /// resolved by f64 (cos²θt ∝ a_c − a). With r = n2/n1 < 1 and sin θ = r sin θt,
+    /// tan θ = r w/sqrt(q), q = 1 + (1 − r²) w², and the landing condition is
+    /// G(w) = (h_s + h_o) r w/sqrt(q) + 2 d w − x = 0: G is increasing and concave in w
+    /// (G' = (h_s + h_o) r/q^{3/2} + 2 d), with G(0) = −x < 0 ≤ G(x/(2d)). Safeguarded Newton in
+    /// f64 on that bracket, then two Newton steps in double-double (the f64 slope reduces the
+    /// residual by ~1e-16 per step). The entry has cos θt = 1/sqrt(1 + w²) and X_e = a + 2 d w.
+    fn entry_by_slope(&self, x_m: f64) -> Entry {
+        let (hs, ho, d) = (self.h_src_m, self.h_obs_m, self.thickness_m);
+        let h = hs + ho;
+        let r = self.n2 / self.n1;
+        let g = |w: f64| {
+            let q = 1.0 + (1.0 - r * r) * w * w;
+            (
+                h * r * w / q.sqrt() + 2.0 * d * w - x_m,
+                h * r / (q * q.sqrt()) + 2.0 * d,
+            )
+        };
+        let (mut lo, mut hi) = (0.0_f64, x_m / (2.0 * d));
+        let mut w = 0.0_f64;
+        for _ in 0..200 {
+            let (gw, slope) = g(w);
+            if gw < 0.0 {
+                lo = lo.max(w);
+            } else {
+                hi = hi.min(w);
+            }
+            let mut next = w - gw / slope;
+            if !(next > lo && next < hi) {
+                next = 0.5 * (lo + hi);
+            }
+            if next == w || (next - w).abs() <= 1e-16 * w {
+                w = next;
+                break;
+            }
+            w = next;
+        }
+        // Double-double: r = n2/n1 and 1 − r² unrounded.
+        let one = TwoFloat::from(1.0);
+        let r_dd = precise::div(TwoFloat::from(self.n2), TwoFloat::from(self.n1));
+        let one_minus_r2 = one - r_dd * r_dd;
+        let tan_in = |w: TwoFloat| precise::div(r_dd * w, (one + one_minus_r2 * w * w).sqrt());
+        let mut w_dd = TwoFloat::from(w);
+        for _ in 0..2 {
+            let t = tan_in(w_dd);
+            let miss = t * hs + t * ho + w_dd * (2.0 * d) - x_m;
+            w_dd -= miss / g(f64::from(w_dd)).1;
+        }
+        let a = tan_in(w_dd) * hs;
+        let l1 = (a * a + TwoFloat::new_mul(hs, hs)).sqrt();
+        let ct = precise::div(one, (one + w_dd * w_dd).sqrt());
+        Entry {
+            a,
+            l1,
+            cos_t: ct,
+            x_exit: a + w_dd * (2.0 * d),
+        }
+    }
+
+    /// The beam through the plate from its entry: optical path (double-double) and amplitudes.
+    fn beam_through(&self, x_m: f64, entry: Entry) -> (Beam, TwoFloat) {
+        let (hs, ho, d) = (self.h_src_m, self.h_obs_m, self.thickness_m);
+        let (n1, n2) = (self.n1, self.n2);
+        let Entry {
+            a,
+            l1,
+            cos_t: ct,
+            x_exit: x_e,
+        } = entry;
         let dx = TwoFloat::from(x_m) - x_e;
         let l3 = (dx * dx + TwoFloat::new_mul(ho, ho)).sqrt();
         let op = l1 * n1 + precise::div(TwoFloat::from(2.0 * d) * n2, ct) + l3 * n1;

@@ -113,11 +113,6 @@ pub(crate) fn observable_factor(
     Ok(power_factor(n_in, d_in, n_out, *dir, normal))
 }
 
-/// The largest tan θt inside a plate at which the two-beam closed form still solves for the beam
-/// through the plate when the top beam is totally reflected (see the `two_beam_plate` arm of
-/// [`value`]): cos θt ≥ 1e-3.
-pub(crate) const MAX_GRAZING_TAN: f64 = 1e3;
-
 /// Short name of a reference model for tables (the serde tag).
 pub fn name(model: &ReferenceModel) -> String {
     serde_json::to_value(model)
@@ -353,45 +348,10 @@ pub fn value(
             // evanescent wave to its far face (frustrated total reflection): the top beam's
             // amplitude is the plate's r_layer at its angle (the plane-wave Airy sum with
             // imaginary cos θ2, docs/PHYSICS.md §5, `TwoBeamPlate::beam_top_frustrated`), as the
-            // tracer applies it at the face (`fresnel::frustrated_layer`).
+            // tracer applies it at the face (`fresnel::frustrated_layer`). The beam through the
+            // plate is solved for tan θt in double-double however steeply it runs inside
+            // (`TwoBeamPlate`, docs/PHYSICS.md §5).
             let x = horiz.length();
-            let h = t.h_src_m + t.h_obs_m;
-            let sin1_sq = precise::div(
-                TwoFloat::new_mul(x, x),
-                TwoFloat::new_mul(x, x) + TwoFloat::new_mul(h, h),
-            );
-            let inc = Incidence {
-                cos_sq: TwoFloat::from(1.0) - sin1_sq,
-            };
-            let layer = analytic::plate::Film {
-                n1: t.n1,
-                n2: t.n2,
-                n3: t.n1,
-                thickness_m: t.thickness_m,
-            };
-            if layer.frustration(inc, lambda_m).is_some() {
-                // The beam through the plate must enter below the critical angle, at sin θ <
-                // n2/n1, so it covers the rest of the lateral distance grazing inside the
-                // plate: tan θt ≥ (x − (h_s + h_o) tan θc)/(2d). Its entry point is found by a
-                // root solve whose slope is a finite difference over 1e-7 of the entry offset
-                // (`plate::TwoBeamPlate::beam_bottom`), which needs cos θt ≳ 1e-3.
-                let tan_c = t.n2 / (t.n1 * t.n1 - t.n2 * t.n2).sqrt();
-                let tan_t = (x - h * tan_c) / (2.0 * t.thickness_m);
-                if tan_t > MAX_GRAZING_TAN {
-                    return Err(format!(
-                        "the top beam meets the plate beyond the critical angle {:.4}° of its top \
-                         face (n1 = {} > n2 = {}), so the beam through the plate enters below it \
-                         and runs grazing inside the {:e} m plate, at tan θt ≥ {tan_t:.4e} over \
-                         {x:.4e} m: beyond tan θt = {MAX_GRAZING_TAN:e}, where the two-beam \
-                         closed form's entry point cannot be resolved (cos θt → 0 at the critical \
-                         angle); a thicker plate or a probe nearer the source is accepted",
-                        (t.n2 / t.n1).asin().to_degrees(),
-                        t.n1,
-                        t.n2,
-                        t.thickness_m,
-                    ));
-                }
-            }
             Ok(src.intensity
                 * if basis_free {
                     t.intensity_unpolarized_basis_free(x, lambda_m)

@@ -146,7 +146,8 @@ impl<'a> FarFieldPaths<'a> {
             *b.dirs.last().unwrap(),
             *b.indices.last().unwrap(),
         );
-        let step = step_planes(self.scene, self.optics, k, ev, (o, d, n), b.q2)?;
+        let from = b.sequence.last().map(|e| e.surface);
+        let step = step_planes(self.scene, self.optics, k, ev, (o, d, n), b.q2, from)?;
         let mut next = b.clone();
         next.q2 = Some(step.q2);
         next.denser_reflections += usize::from(step.denser);
@@ -210,6 +211,7 @@ impl<'a> FarFieldPaths<'a> {
             denser_reflections: b.denser_reflections,
             has_tir: b.has_tir,
             spreading: 1.0,
+            launch_normal_q2: None,
         })
     }
 }

@@ -221,6 +221,12 @@ pub struct SolvedPath {
     pub has_tir: bool,
     /// S², the intensity factor of geometric spreading (1 when spreading is off).
     pub spreading: f64,
+    /// The launch's (n cos θ)² about the first event's plane normal, in double-double, with
+    /// that normal ([`crate::optics::ray::Ray::normal_q2`]), where the launch came from Snell's
+    /// invariant of a parallel stack (`stack::parallel_stack_launch`): rays start with it, so
+    /// a beam grazing inside a plate (cos θt ~ 1e-8) keeps its angle, which the f64 launch
+    /// direction rounds away (docs/PHYSICS.md §8). `None` otherwise.
+    pub launch_normal_q2: Option<(DVec3, DoubleDouble)>,
 }
 
 impl SolvedPath {
@@ -493,7 +499,8 @@ pub fn solve(
         }
         _ => None,
     };
-    if let Some(d) = stack {
+    let launch_q2 = stack.map(|(_, q2)| q2);
+    if let Some((d, _)) = stack {
         guess_dir = d;
     } else if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) =
         (seq.first(), emitter)
@@ -560,13 +567,15 @@ pub fn solve(
         None => {
             let m = LaunchModel::new(emitter, guess_dir, guess_origin);
             let (o, d) = m.launch([0.0, 0.0]);
-            trace_planes(scene, optics, o, d, seq, &mut g0)?;
+            trace_planes_carrying(scene, optics, (o, d, launch_q2), seq, &mut g0)?;
             m
         }
     };
+    // The stack launch (x = 0) carries its invariant; Newton's other launches their own.
     let trace = |p: [f64; 2], g: &mut Geometry| {
         let (o, d) = model.launch(p);
-        trace_planes(scene, optics, o, d, seq, g)
+        let carried = if p == [0.0, 0.0] { launch_q2 } else { None };
+        trace_planes_carrying(scene, optics, (o, d, carried), seq, g)
     };
     let mut x = [0.0, 0.0];
     let dref = match target {
@@ -740,14 +749,18 @@ pub fn solve(
         }
         _ => DoubleDouble::ZERO,
     };
-    finish(
+    let mut path = finish(
         scene,
         g,
         seq,
         &target,
         (landing_error, iterations, spreading),
         start,
-    )
+    )?;
+    if x == [0.0, 0.0] {
+        path.launch_normal_q2 = launch_q2;
+    }
+    Ok(path)
 }
 
 /// Validate extents and blockers and assemble the [`SolvedPath`]; `start` is the optical path
@@ -815,6 +828,7 @@ fn finish(
         denser_reflections: g.denser_reflections,
         has_tir: g.has_tir,
         spreading,
+        launch_normal_q2: None,
         points: g.points.into(),
         dirs: g.dirs.into(),
         indices: g.indices.into(),

@@ -24,7 +24,8 @@ pub(super) struct PlaneStep {
 /// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`, carrying
 /// `carried` ([`crate::optics::ray::Ray::normal_q2`]): TIR verdicts, refracted directions and the
 /// refraction factor from the double-double normal wavevectors the tracer uses
-/// ([`interaction::normal_wavevector_squares`]).
+/// ([`interaction::normal_wavevector_squares`]). `from`: the surface of the previous event,
+/// where the ray starts (its point `o` lies on that plane).
 #[inline(always)]
 pub(super) fn step_planes(
     scene: &Scene,
@@ -33,22 +34,58 @@ pub(super) fn step_planes(
     ev: Event,
     (o, d, n): (DVec3, DVec3, f64),
     carried: Option<(DVec3, DoubleDouble)>,
+    from: Option<usize>,
 ) -> Result<PlaneStep, PathError> {
     let surf = &scene.surfaces[ev.surface];
     let so = surface_optics(optics, k, ev.surface)?;
-    let t = surf
-        .plane
-        .intersect(o, d)
-        .filter(|t| *t > 0.0)
-        .ok_or(PathError::Missed { event: k })?;
+    let normal = surf.plane.normal;
+    let (n1, n2) = indices_for(so, normal, d, n);
+    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), carried);
+    // The distance to the plane: where the ray carries its (n cos θ)² about this plane's normal
+    // (a parallel face, or a stack launch), along the cosine formed from it, not from d·N of
+    // the f64 direction, whose normal part is off by ~1e-16 absolute on a tilted plane: grazing
+    // inside a plate (cos θt ~ 1e-8) that is 1e-8 of the lateral run, and the landing stalled
+    // (`fringe fuzz --family two_beam_plate --seed 1`, rotated scenes 23, 26). The lateral
+    // run t·d then keeps the relative precision of d's tangential part.
+    let carried_cos = match carried {
+        Some((m, _)) if m == normal || m == -normal => {
+            let c = q2_i.sqrt().to_f64() / n1;
+            (c > 0.0 && c.is_finite()).then(|| c.copysign(d.dot(normal)))
+        }
+        _ => None,
+    };
+    // The height of `o` above this plane: from the planes' own heights where both are held
+    // from one anchor along one normal line (a plate's faces, `Plane::offset`), exact but for
+    // one rounding; a hit point rounded to f64 coordinates is off its plane by ~1e-16 of
+    // them, which grazing at tan θt = 3e7 inside a 3 µm plate 10 m from the origin moved the
+    // landing by 5e-8 m (`fringe fuzz --family two_beam_plate --seed 1`, scene 25).
+    let height = |plane: &crate::scene::geometry::Plane| {
+        let prev = &scene.surfaces[from?].plane;
+        if prev.anchor != plane.anchor {
+            return None;
+        }
+        if prev.normal == plane.normal {
+            Some(prev.height_m - plane.height_m)
+        } else if prev.normal == -plane.normal {
+            Some(-prev.height_m - plane.height_m)
+        } else {
+            None
+        }
+    };
+    let t = match carried_cos {
+        Some(c) if c != 0.0 && c.signum() == d.dot(normal).signum() => {
+            let s = height(&surf.plane).unwrap_or_else(|| surf.plane.signed_distance(o));
+            Some(-s / c)
+        }
+        _ => surf.plane.intersect(o, d),
+    }
+    .filter(|t| *t > 0.0)
+    .ok_or(PathError::Missed { event: k })?;
     // The hit point on the plane itself: o + t·d rounds at the size of t (a launch 100 m away
     // leaves the point ~1e-14 m off the plane, a first-order error of every path through it);
     // moved back onto the plane it is off by the rounding of its distance to the plane's point
     // only. Along the plane the rounding is second order (Fermat).
     let x = surf.plane.project(o + t * d);
-    let normal = surf.plane.normal;
-    let (n1, n2) = indices_for(so, normal, d, n);
-    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), carried);
     let mirror = matches!(so, SurfaceOptics::IdealMirror);
     let splitter = matches!(so, SurfaceOptics::Splitter { .. });
     if n1 != n {
@@ -100,14 +137,27 @@ pub(super) fn trace_planes(
     seq: &[Event],
     g: &mut Geometry,
 ) -> Result<(), PathError> {
+    trace_planes_carrying(scene, optics, (origin, dir, None), seq, g)
+}
+
+/// [`trace_planes`] for a launch that carries its (n cos θ)² about the first event's normal
+/// ([`crate::optics::ray::Ray::normal_q2`]; the invariant of [`parallel_stack_launch`]).
+pub(super) fn trace_planes_carrying(
+    scene: &Scene,
+    optics: &SceneOptics,
+    (origin, dir, carried): (DVec3, DVec3, Option<(DVec3, DoubleDouble)>),
+    seq: &[Event],
+    g: &mut Geometry,
+) -> Result<(), PathError> {
     g.clear();
     if seq.is_empty() {
         g.start(origin, dir, optics.ambient_index, 0);
     }
     let mut ray = (origin, dir, optics.ambient_index);
-    let mut carried = None;
+    let mut carried = carried;
     for (k, ev) in seq.iter().enumerate() {
-        let step = step_planes(scene, optics, k, *ev, ray, carried)?;
+        let from = k.checked_sub(1).map(|j| seq[j].surface);
+        let step = step_planes(scene, optics, k, *ev, ray, carried, from)?;
         carried = Some(step.q2);
         g.denser_reflections += usize::from(step.denser);
         g.has_tir |= step.tir;
@@ -234,13 +284,20 @@ impl LaunchModel {
 /// with D the lateral distance from source to target. f is increasing and convex, so Newton's
 /// method safeguarded by bisection on the bracket converges from any start. The segment
 /// indices depend only on the sequence, not on the launch angle.
+///
+/// Returns the launch direction and, with ν, the launch's q0² = (n0 cos θ0)² = (n0 − p)(n0 + p)
+/// in double-double: the ray carries it (`Ray::normal_q2`), so every segment's cosine is formed
+/// from the invariant p, not from the f64 launch direction, whose rounding (~1e-16 of sin θ0)
+/// is a relative error of ~1e-16/cos²θk in a segment grazing at θk (the beam through a plate
+/// less dense than its ambient, just below the critical angle, at tan θt up to 1e8 and beyond:
+/// it did not land, `fringe fuzz --family two_beam_plate --seed 1`, scenes 23, 25, 26).
 pub(super) fn parallel_stack_launch(
     scene: &Scene,
     optics: &SceneOptics,
     seq: &[Event],
     source: DVec3,
     target: DVec3,
-) -> Option<DVec3> {
+) -> Option<(DVec3, (DVec3, DoubleDouble))> {
     use crate::optics::double_double::two_diff;
     let nu = scene.surfaces[seq.first()?.surface].plane.normal;
     // The target relative to the source from exact coordinate differences, split along ν and
@@ -377,9 +434,10 @@ pub(super) fn parallel_stack_launch(
         p
     };
     let sin0 = (p / dd(n0)).to_f64();
-    let cos0 = (((dd(n0) - p) * (dd(n0) + p)).sqrt() / dd(n0)).to_f64();
+    let q0_sq = (dd(n0) - p) * (dd(n0) + p);
+    let cos0 = (q0_sq.sqrt() / dd(n0)).to_f64();
     let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
-    Some(sin0 * u + cos0 * first_up * nu)
+    Some((sin0 * u + cos0 * first_up * nu, (nu, q0_sq)))
 }
 
 /// [`cannot_reach`] for a sequence on parallel planes.
