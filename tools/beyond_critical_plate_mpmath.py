@@ -21,7 +21,7 @@ from mp_two_beam import intensity_at, landing
 mp.mp.dps = 50
 
 
-def intensity(n1, n2, d, hs, ho, x, lam):
+def intensity(n1, n2, d, hs, ho, x, lam, r_top=None):
     N1, N2, D, HS, HO, X, LAM = map(mp.mpf, (n1, n2, d, hs, ho, x, lam))
 
     land = landing(N1, N2, D, HS, HO, X)
@@ -36,7 +36,7 @@ def intensity(n1, n2, d, hs, ho, x, lam):
         else:
             lo = m
     a = (lo + hi) / 2
-    return intensity_at(N1, N2, D, HS, HO, X, LAM, a)
+    return intensity_at(N1, N2, D, HS, HO, X, LAM, a, r_top)
 
 
 # (n1, n2, d, h_s, h_o, x, lambda): the shrunk fuzz scene 122 of `fringe fuzz --family

@@ -37,9 +37,10 @@ def landing(n1, n2, d, hs, ho, x):
     return land
 
 
-def intensity_at(n1, n2, d, hs, ho, x, lam, a):
+def intensity_at(n1, n2, d, hs, ho, x, lam, a, r_top=None):
     """(I, tan t) for beam 2 entering at lateral a (the root of `landing`); t is its angle in
-    the plate."""
+    the plate. `r_top`: the top beam's (r_s, r_p) if not the bare face's Fresnel r12 (beyond
+    the critical angle, the plate's frustrated r_layer)."""
     l1 = mp.sqrt(a * a + hs * hs)
     st = n1 / n2 * a / l1
     ct = mp.sqrt(1 - st * st)
@@ -47,6 +48,8 @@ def intensity_at(n1, n2, d, hs, ho, x, lam, a):
     op2 = n1 * l1 + 2 * n2 * d / ct + n1 * mp.sqrt((x - xe) ** 2 + ho * ho)
     op1 = n1 * mp.sqrt(x * x + (hs + ho) ** 2)
     r12s, r12p, _, _, _ = fresnel(n1, n2, (hs + ho) / mp.sqrt(x * x + (hs + ho) ** 2))
+    if r_top is not None:
+        r12s, r12p = r_top
     _, _, t12s, t12p, _ = fresnel(n1, n2, hs / l1)
     r23s, r23p, t21s, t21p, _ = fresnel(n2, n1, ct)
     a2s, a2p = t12s * r23s * t21s, t12p * r23p * t21p

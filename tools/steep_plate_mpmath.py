@@ -7,7 +7,8 @@ the beam through the plate enters just below the critical angle and covers the l
 inside the plate. The reference once refused tan theta_t > 1e3 (its f64 root solve in the entry
 offset a cannot resolve a_c - a ~ cos^2 theta_t); `TwoBeamPlate::beam_bottom` now solves for
 tan theta_t in double-double. The formulas, bisection and intensity are those of
-tools/beyond_critical_plate_mpmath.py (imported, not copied), at 60 digits: cos^2 theta_t = 1e-20
+tools/beyond_critical_plate_mpmath.py (imported, not copied), at 60 digits, with the top beam's
+frustrated r_layer from tools/tunnelling_mpmath.py: cos^2 theta_t = 1e-20
 needs a_c - a to 1e-40 of a_c.
 
 Each row's x is made in float from a target w = tan theta_t by x = (h_s + h_o) tan theta + 2 d w,
@@ -23,6 +24,7 @@ import mpmath as mp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from beyond_critical_plate_mpmath import intensity  # noqa: E402
+from tunnelling_mpmath import r_layer  # noqa: E402
 
 mp.mp.dps = 60
 
@@ -46,5 +48,9 @@ if __name__ == "__main__":
         for w in targets:
             x = (hs + ho) * r * w / math.sqrt(1 + (1 - r * r) * w * w) + 2 * d * w
             row = (n1, n2, d, hs, ho, x, lam)
-            I, tan_t = intensity(*row)
+            # The top beam, beyond the top face's critical angle, takes the plate's frustrated
+            # total reflection r_layer (the plane-wave Airy sum with imaginary cos theta_2).
+            c_top = mp.mpf(hs + ho) / mp.sqrt(mp.mpf(x) ** 2 + mp.mpf(hs + ho) ** 2)
+            r_top = tuple(r_layer(*map(mp.mpf, (n1, n2, d)), c_top, mp.mpf(lam), p) for p in (0, 1))
+            I, tan_t = intensity(*row, r_top=r_top)
             print(",".join(repr(v) for v in row) + "," + mp.nstr(tan_t, 6) + "," + mp.nstr(I, 30))

@@ -30,7 +30,7 @@ import mpmath as mp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 from airy_mpmath import airy, coeffs  # noqa: E402
-from beyond_critical_mpmath import fresnel  # noqa: E402
+from mp_two_beam import intensity_at  # noqa: E402
 from precision_classes_mpmath import index, normalize, sweep_points  # noqa: E402
 
 mp.mp.dps = 50
@@ -89,22 +89,9 @@ def two_beam(n1, n2, d, hs, ho, x, lam):
         return a + 2 * d * st / mp.sqrt(1 - st * st) + ho * a / hs - x
 
     a = mp.findroot(land, (mp.mpf(0), min(x, ac * (1 - mp.mpf(10) ** -40))), solver="anderson")
-    l1 = mp.sqrt(a * a + hs * hs)
-    st = n1 / n2 * a / l1
-    ct = mp.sqrt(1 - st * st)
-    xe = a + 2 * d * st / ct
-    op2 = n1 * l1 + 2 * n2 * d / ct + n1 * mp.sqrt((x - xe) ** 2 + ho * ho)
-    op1 = n1 * mp.sqrt(x * x + (hs + ho) ** 2)
     c_top = (hs + ho) / mp.sqrt(x * x + (hs + ho) ** 2)
-    r1s, r1p = r_layer(n1, n2, d, c_top, lam, 0), r_layer(n1, n2, d, c_top, lam, 1)
-    _, _, t12s, t12p = fresnel(n1, n2, hs / l1)
-    r23s, r23p, t21s, t21p = fresnel(n2, n1, ct)
-    a2s, a2p = t12s * r23s * t21s, t12p * r23p * t21p
-    e = mp.expjpi(2 * (op1 - op2) / lam)
-    overlap = mp.cos(mp.atan2(x, hs + ho) - mp.atan2(a, hs))
-    i_s = abs(r1s * e + a2s) ** 2
-    i_p = abs(r1p) ** 2 + abs(a2p) ** 2 + 2 * mp.re(r1p * mp.conj(a2p) * e) * overlap
-    return (i_s + i_p) / 2
+    r_top = (r_layer(n1, n2, d, c_top, lam, 0), r_layer(n1, n2, d, c_top, lam, 1))
+    return intensity_at(n1, n2, d, hs, ho, x, lam, a, r_top)[0]
 
 
 # (name, n1, n2, thickness_m, h_src_m, h_obs_m, lambda_m, [x_m ...]) as the loader forms them

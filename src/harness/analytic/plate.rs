@@ -583,7 +583,7 @@ pub struct Beam {
 
 impl TwoBeamPlate {
     /// Beam 1: reflection at the top face (image method): tan θ = x/(h_s + h_o).
-    pub(crate) fn beam_top(&self, x_m: f64) -> Beam {
+    pub fn beam_top(&self, x_m: f64) -> Beam {
         let h = self.h_src_m + self.h_obs_m;
         let theta = x_m.atan2(h);
         // cos θ = h/√(x² + h²) keeps its relative precision near grazing, where cos(atan2)

@@ -5,7 +5,7 @@
 use super::build::{Built, plane_wave};
 use super::spec::{BeamSpec, FarSide, Observer, ReferenceModel};
 use crate::harness::analytic::plate::{FTIR_NEGLIGIBLE, Incidence, Pol};
-use crate::harness::analytic::{self, michelson, precise};
+use crate::harness::analytic::{self, michelson};
 use crate::optics::fresnel;
 use crate::optics::material::Medium;
 use crate::optics::observable::{Observable, Returns, power_factor};
@@ -14,7 +14,6 @@ use crate::scene::source::{Channel, Emitter, Source};
 use crate::trace::path::{Event, EventKind, Target};
 use glam::DVec3;
 use num_complex::Complex64;
-use twofloat::TwoFloat;
 
 /// How a reference is compared with the trace.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
