@@ -223,7 +223,7 @@ impl Scene {
     /// interface whose near medium is the medium behind `i` (a plate's or film's other face),
     /// with no other surface entering the slab between them. Returns the partner's index, the
     /// layer's thickness d (m; exactly the difference of the heights for the two faces of a
-    /// plate, [`Plane::separation_from`]) and the medium beyond the partner. `None` for
+    /// plate, `Plane::separation_from`) and the medium beyond the partner. `None` for
     /// anything else (an unbounded half-space behind, a wedge, a slab another surface cuts):
     /// there the tracer keeps the ray model's total reflection (docs/PHYSICS.md §5).
     pub fn layer_behind(&self, i: usize, from_front: bool) -> Option<(usize, f64, Medium)> {
