@@ -499,8 +499,9 @@ pub fn solve(
         }
         _ => None,
     };
-    let launch_q2 = stack.map(|(_, q2)| q2);
-    if let Some((d, _)) = stack {
+    let launch_q2 = stack.map(|(_, q2, _)| q2);
+    let launch_p2 = stack.map(|(_, (m, _), p2)| (m, p2));
+    if let Some((d, _, _)) = stack {
         guess_dir = d;
     } else if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) =
         (seq.first(), emitter)
@@ -567,14 +568,14 @@ pub fn solve(
         None => {
             let m = LaunchModel::new(emitter, guess_dir, guess_origin);
             let (o, d) = m.launch([0.0, 0.0]);
-            trace_planes_carrying(scene, optics, (o, d, launch_q2), seq, &mut g0)?;
+            trace_planes_carrying(scene, optics, (o, d, launch_p2), seq, &mut g0)?;
             m
         }
     };
     // The stack launch (x = 0) carries its invariant; Newton's other launches their own.
     let trace = |p: [f64; 2], g: &mut Geometry| {
         let (o, d) = model.launch(p);
-        let carried = if p == [0.0, 0.0] { launch_q2 } else { None };
+        let carried = if p == [0.0, 0.0] { launch_p2 } else { None };
         trace_planes_carrying(scene, optics, (o, d, carried), seq, g)
     };
     let mut x = [0.0, 0.0];

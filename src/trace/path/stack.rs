@@ -3,6 +3,7 @@
 //! stalled landing through parallel planes is harmless.
 
 use super::*;
+use crate::optics::double_double::two_prod;
 
 /// One event of a trace on the unbounded planes (no extents, no blockers).
 pub(super) struct PlaneStep {
@@ -19,6 +20,9 @@ pub(super) struct PlaneStep {
     pub(super) refraction_factor: f64,
     /// The normal and (n cos θ)² after the event, in double-double (`Ray::normal_q2`).
     pub(super) q2: (DVec3, DoubleDouble),
+    /// The normal and Snell's invariant p² = (n sin θ)² about it, in double-double: what
+    /// [`trace_planes_carrying`] carries to the next parallel face (docs/PHYSICS.md §8).
+    pub(super) p2: (DVec3, DoubleDouble),
 }
 
 /// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`, carrying
@@ -36,11 +40,56 @@ pub(super) fn step_planes(
     carried: Option<(DVec3, DoubleDouble)>,
     from: Option<usize>,
 ) -> Result<PlaneStep, PathError> {
+    let carried = carried.map(|(m, q2)| (m, Carried::NormalQ2(q2)));
+    step_planes_carried(scene, optics, k, ev, (o, d, n), carried, from)
+}
+
+/// What a ray carries to the next parallel face, in double-double (docs/PHYSICS.md §8).
+#[derive(Clone, Copy)]
+pub(super) enum Carried {
+    /// (n cos θ)² in the ray's medium (`Ray::normal_q2`).
+    NormalQ2(DoubleDouble),
+    /// Snell's invariant p² = (n sin θ)².
+    TangentialP2(DoubleDouble),
+}
+
+/// [`step_planes`] for a ray carrying Snell's invariant p² = (n sin θ)² about the normal of
+/// its last face (`carried`, in double-double; `None` forms it from the f64 direction), or
+/// its (n cos θ)² as [`step_planes`] does. At a
+/// parallel face the normal wavevector squares are (n1 cos θi)² = n1² − p² and (n2 cos θt)² =
+/// n2² − p² (docs/PHYSICS.md §8): each is as well conditioned as p² itself, also where it is
+/// small (grazing in a plate of low index under a dense ambient). Carrying (n cos θ)² instead
+/// and forming q² + n2² − n1² loses ~n1²·1e-32/q_t² of it: 2e-12 of tan θt for n = 4.76 over
+/// n = 0.0092 at tan θt = 3e7, and the landing stalled at 3.5e-10 m (`fringe fuzz --family
+/// two_beam_plate --seed 1`, scene 25).
+#[inline(always)]
+pub(super) fn step_planes_carried(
+    scene: &Scene,
+    optics: &SceneOptics,
+    k: usize,
+    ev: Event,
+    (o, d, n): (DVec3, DVec3, f64),
+    carried: Option<(DVec3, Carried)>,
+    from: Option<usize>,
+) -> Result<PlaneStep, PathError> {
     let surf = &scene.surfaces[ev.surface];
     let so = surface_optics(optics, k, ev.surface)?;
     let normal = surf.plane.normal;
     let (n1, n2) = indices_for(so, normal, d, n);
-    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), carried);
+    let carried = carried.filter(|(m, _)| *m == normal || *m == -normal);
+    let (q2_i, q2_t, p2) = match carried {
+        Some((_, Carried::TangentialP2(p2))) => (two_prod(n1, n1) - p2, two_prod(n2, n2) - p2, p2),
+        Some((m, Carried::NormalQ2(q2))) => {
+            let (q2_i, q2_t) =
+                interaction::normal_wavevector_squares(d, normal, (n1, n2), Some((m, q2)));
+            (q2_i, q2_t, two_prod(n1, n1) - q2_i)
+        }
+        None => {
+            let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), None);
+            (q2_i, q2_t, two_prod(n1, n1) - q2_i)
+        }
+    };
+    let carried = carried.map(|(m, _)| (m, q2_i));
     // The distance to the plane: where the ray carries its (n cos θ)² about this plane's normal
     // (a parallel face, or a stack launch), along the cosine formed from it, not from d·N of
     // the f64 direction, whose normal part is off by ~1e-16 absolute on a tilted plane: grazing
@@ -100,6 +149,7 @@ pub(super) fn step_planes(
             tir: !mirror && !splitter && q2_t.hi < 0.0,
             refraction_factor: 1.0,
             q2: (normal, q2_i),
+            p2: (normal, p2),
         },
         EventKind::Refract => {
             if mirror {
@@ -122,6 +172,7 @@ pub(super) fn step_planes(
                 tir: false,
                 refraction_factor: (q2_t.sqrt().to_f64() / q2_i.sqrt().to_f64()),
                 q2: (normal, q2_t),
+                p2: (normal, p2),
             }
         }
     })
@@ -140,8 +191,9 @@ pub(super) fn trace_planes(
     trace_planes_carrying(scene, optics, (origin, dir, None), seq, g)
 }
 
-/// [`trace_planes`] for a launch that carries its (n cos θ)² about the first event's normal
-/// ([`crate::optics::ray::Ray::normal_q2`]; the invariant of [`parallel_stack_launch`]).
+/// [`trace_planes`] for a launch that carries Snell's invariant p² = (n sin θ)² about the
+/// first event's normal (in double-double, [`parallel_stack_launch`]); every event passes
+/// it on to the next ([`step_planes_carried`]).
 pub(super) fn trace_planes_carrying(
     scene: &Scene,
     optics: &SceneOptics,
@@ -154,11 +206,12 @@ pub(super) fn trace_planes_carrying(
         g.start(origin, dir, optics.ambient_index, 0);
     }
     let mut ray = (origin, dir, optics.ambient_index);
-    let mut carried = carried;
+    let mut carried = carried.map(|(m, p2)| (m, Carried::TangentialP2(p2)));
     for (k, ev) in seq.iter().enumerate() {
         let from = k.checked_sub(1).map(|j| seq[j].surface);
-        let step = step_planes(scene, optics, k, *ev, ray, carried, from)?;
-        carried = Some(step.q2);
+        let step = step_planes_carried(scene, optics, k, *ev, ray, carried, from)?;
+        let (m, p2) = step.p2;
+        carried = Some((m, Carried::TangentialP2(p2)));
         g.denser_reflections += usize::from(step.denser);
         g.has_tir |= step.tir;
         g.refraction_factor *= step.refraction_factor;
@@ -285,9 +338,10 @@ impl LaunchModel {
 /// method safeguarded by bisection on the bracket converges from any start. The segment
 /// indices depend only on the sequence, not on the launch angle.
 ///
-/// Returns the launch direction and, with ν, the launch's q0² = (n0 cos θ0)² = (n0 − p)(n0 + p)
-/// in double-double: the ray carries it (`Ray::normal_q2`), so every segment's cosine is formed
-/// from the invariant p, not from the f64 launch direction, whose rounding (~1e-16 of sin θ0)
+/// Returns the launch direction, with ν the launch's q0² = (n0 cos θ0)² = (n0 − p)(n0 + p) in
+/// double-double (the tracer's ray carries it, `Ray::normal_q2`) and p² (the path solver's
+/// [`trace_planes_carrying`] carries it), so every segment's cosine is formed from the
+/// invariant p, not from the f64 launch direction, whose rounding (~1e-16 of sin θ0)
 /// is a relative error of ~1e-16/cos²θk in a segment grazing at θk (the beam through a plate
 /// less dense than its ambient, just below the critical angle, at tan θt up to 1e8 and beyond:
 /// it did not land, `fringe fuzz --family two_beam_plate --seed 1`, scenes 23, 25, 26).
@@ -297,7 +351,7 @@ pub(super) fn parallel_stack_launch(
     seq: &[Event],
     source: DVec3,
     target: DVec3,
-) -> Option<(DVec3, (DVec3, DoubleDouble))> {
+) -> Option<(DVec3, (DVec3, DoubleDouble), DoubleDouble)> {
     use crate::optics::double_double::two_diff;
     let nu = scene.surfaces[seq.first()?.surface].plane.normal;
     // The target relative to the source from exact coordinate differences, split along ν and
@@ -437,7 +491,7 @@ pub(super) fn parallel_stack_launch(
     let q0_sq = (dd(n0) - p) * (dd(n0) + p);
     let cos0 = (q0_sq.sqrt() / dd(n0)).to_f64();
     let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
-    Some((sin0 * u + cos0 * first_up * nu, (nu, q0_sq)))
+    Some((sin0 * u + cos0 * first_up * nu, (nu, q0_sq), p * p))
 }
 
 /// [`cannot_reach`] for a sequence on parallel planes.
