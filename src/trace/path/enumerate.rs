@@ -60,6 +60,7 @@ pub fn discover_sequences(
             d,
             optics.ambient_index,
             None,
+            None,
             0,
             (TreeBuilder::ROOT, 0),
             limits,
@@ -77,6 +78,7 @@ fn explore(
     d: DVec3,
     n: f64,
     from: Option<usize>,
+    carried: Option<(DVec3, DoubleDouble)>,
     internal: usize,
     (node, depth): (usize, usize),
     limits: &EnumerationLimits,
@@ -118,6 +120,13 @@ fn explore(
         layers: optics.layers[j],
     };
     let (n1, n2) = interaction::indices_for(so, normal, d, n);
+    // TIR verdicts and refracted directions as the solver forms them (`step_planes`): from the
+    // (n cos θ)² carried in double-double between parallel faces. An f64 cos²θt = 1 − η²
+    // sin²θi rounds at ~η² ε, which near grazing exit (cos²θt ~ 1e-14 and below) decided a
+    // total reflection where the ray refracts out, and every order through a film at
+    // grazing incidence was missing from the plan (issue #12: the Airy tail could not be
+    // closed, `fringe fuzz --family airy --seed 1`, scenes 6, 69, 135, 163, 217).
+    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), carried);
     let is_internal = n != optics.ambient_index;
     if !is_internal || internal < limits.max_internal_reflections {
         let child = found.child(
@@ -135,15 +144,22 @@ fn explore(
             fresnel::reflect(d, normal),
             n,
             Some(j),
+            Some((normal, q2_i)),
             internal + inc,
             (child, depth + 1),
             limits,
             found,
         );
     }
-    if let SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } = hit.optics
-        && let Some(d_t) = fresnel::refract(d, normal, n1, n2)
-    {
+    let refracted = match hit.optics {
+        SurfaceOptics::Dielectric { .. } if n1 != n2 => (q2_t.hi >= 0.0)
+            .then(|| interaction::snell_direction(d, normal, (n1, n2), q2_t.sqrt().to_f64() / n2)),
+        SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } => {
+            fresnel::refract(d, normal, n1, n2)
+        }
+        _ => None,
+    };
+    if let Some(d_t) = refracted {
         let child = found.child(
             node,
             Event {
@@ -158,6 +174,7 @@ fn explore(
             d_t,
             n2,
             Some(j),
+            Some((normal, q2_t)),
             internal,
             (child, depth + 1),
             limits,
