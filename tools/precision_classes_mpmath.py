@@ -56,7 +56,10 @@ def sweep_points(sw):
     return [sw["from"] + (sw["to"] - sw["from"]) * i / (n - 1) for i in range(n)]
 
 
-def airy_case(case):
+def airy_case(case, extra_normalizations=0):
+    """R or T of the case's film at every sweep point, 50 digits, for the direction as the case
+    file writes it, renormalized `extra_normalizations` more times in f64 (as a tracer that
+    normalizes an already-unit direction holds it); linear or unpolarized light."""
     sw = case["probe"]["sweep"]
     par = sw["parameter"]["incidence_angle_deg"]
     side = sw["observe"]["far_field"]["side"]
@@ -64,8 +67,11 @@ def airy_case(case):
     n1, n2, n3 = (index(case, plate[k]) for k in ("above", "medium", "below"))
     d = plate["thickness_um"] * 1e-6
     lam = case["light"]["monochrome"]["wavelength_nm"] * 1e-9
-    alpha = math.radians(case["scene"]["sources"][0]["polarization"]["linear"]["angle_deg"])
-    fs = mp.cos(mp.mpf(alpha)) ** 2
+    pol = case["scene"]["sources"][0]["polarization"]
+    if "linear" in pol:
+        fs = mp.cos(mp.mpf(math.radians(pol["linear"]["angle_deg"]))) ** 2
+    else:
+        fs = mp.mpf(1) / 2
     normal = normalize(plate["normal"])
     out = []
     for deg in sweep_points(sw):
@@ -75,6 +81,8 @@ def airy_case(case):
         k = ax[0] * n[0] + ax[1] * n[1] + ax[2] * n[2]
         a = normalize([ax[i] - k * n[i] for i in range(3)])
         dv = normalize([math.sin(t) * a[i] - math.cos(t) * n[i] for i in range(3)])
+        for _ in range(extra_normalizations):
+            dv = normalize(dv)
         D = [mp.mpf(x) for x in dv]
         N = [mp.mpf(x) for x in normal]
         dot = sum(x * y for x, y in zip(D, N))

@@ -20,13 +20,11 @@ binary64 products the loader forms.
 Run: python3 tools/thick_plates_mpmath.py > tests/data/thick_plates_mpmath.csv
 """
 import json
-import math
 import os
 
 import mpmath as mp
 
-from airy_mpmath import airy
-from precision_classes_mpmath import index, normalize, sweep_points
+from precision_classes_mpmath import airy_case
 
 mp.mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -34,41 +32,9 @@ FOUND = os.path.join(HERE, "..", "tests", "fuzz_found")
 CASES = ["fuzz_airy_s1_159_rotated", "fuzz_airy_s1_159"]
 
 
-def values(case, extra_normalizations):
-    sw = case["probe"]["sweep"]
-    par = sw["parameter"]["incidence_angle_deg"]
-    side = sw["observe"]["far_field"]["side"]
-    plate = case["scene"]["surfaces"][0]["plate"]
-    n1, n2, n3 = (index(case, plate[k]) for k in ("above", "medium", "below"))
-    d = plate["thickness_um"] * 1e-6
-    lam = case["light"]["monochrome"]["wavelength_nm"] * 1e-9
-    alpha = math.radians(case["scene"]["sources"][0]["polarization"]["linear"]["angle_deg"])
-    fs = mp.cos(mp.mpf(alpha)) ** 2
-    normal = normalize(plate["normal"])
-    out = []
-    for deg in sweep_points(sw):
-        t = math.radians(deg)
-        n = normalize(par["surface_normal"])
-        ax = par["in_plane_axis"]
-        k = ax[0] * n[0] + ax[1] * n[1] + ax[2] * n[2]
-        a = normalize([ax[i] - k * n[i] for i in range(3)])
-        dv = normalize([math.sin(t) * a[i] - math.cos(t) * n[i] for i in range(3)])
-        for _ in range(extra_normalizations):
-            dv = normalize(dv)
-        D = [mp.mpf(x) for x in dv]
-        N = [mp.mpf(x) for x in normal]
-        dot = sum(x * y for x, y in zip(D, N))
-        c1 = abs(dot) / mp.sqrt(sum(x * x for x in D) * sum(x * x for x in N))
-        Rs, Ts = airy(n1, n2, n3, d, c1, lam, 0)
-        Rp, Tp = airy(n1, n2, n3, d, c1, lam, 1)
-        v = fs * Rs + (1 - fs) * Rp if side == "reflected" else fs * Ts + (1 - fs) * Tp
-        out.append(v)
-    return out
-
-
 print("case,point,value")
 for name in CASES:
     case = json.load(open(os.path.join(FOUND, name + ".json")))
     for label, extra in (("written", 0), ("held", 1)):
-        for i, v in enumerate(values(case, extra)):
+        for i, v in enumerate(airy_case(case, extra)):
             print(f"{label}/{name},{i},{mp.nstr(v, 30)}")

@@ -29,46 +29,13 @@ import sys
 import mpmath as mp
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
-from airy_mpmath import airy, coeffs  # noqa: E402
+from airy_mpmath import coeffs  # noqa: E402
 from mp_two_beam import intensity_at  # noqa: E402
-from precision_classes_mpmath import index, normalize, sweep_points  # noqa: E402
+from precision_classes_mpmath import airy_case  # noqa: E402
 
 mp.mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = os.path.join(HERE, "..", "tests", "tunnelling")
-
-
-def airy_case(case):
-    sw = case["probe"]["sweep"]
-    par = sw["parameter"]["incidence_angle_deg"]
-    side = sw["observe"]["far_field"]["side"]
-    plate = case["scene"]["surfaces"][0]["plate"]
-    n1, n2, n3 = (index(case, plate[k]) for k in ("above", "medium", "below"))
-    d = plate["thickness_um"] * 1e-6
-    lam = case["light"]["monochrome"]["wavelength_nm"] * 1e-9
-    pol = case["scene"]["sources"][0]["polarization"]
-    if "linear" in pol:
-        fs = mp.cos(mp.mpf(math.radians(pol["linear"]["angle_deg"]))) ** 2
-    else:
-        fs = mp.mpf(1) / 2
-    normal = normalize(plate["normal"])
-    out = []
-    for deg in sweep_points(sw):
-        t = math.radians(deg)
-        n = normalize(par["surface_normal"])
-        ax = par["in_plane_axis"]
-        k = ax[0] * n[0] + ax[1] * n[1] + ax[2] * n[2]
-        a = normalize([ax[i] - k * n[i] for i in range(3)])
-        dv = normalize([math.sin(t) * a[i] - math.cos(t) * n[i] for i in range(3)])
-        D = [mp.mpf(x) for x in dv]
-        N = [mp.mpf(x) for x in normal]
-        dot = sum(x * y for x, y in zip(D, N))
-        c1 = abs(dot) / mp.sqrt(sum(x * x for x in D) * sum(x * x for x in N))
-        Rs, Ts = airy(n1, n2, n3, d, c1, lam, 0)
-        Rp, Tp = airy(n1, n2, n3, d, c1, lam, 1)
-        v = fs * Rs + (1 - fs) * Rp if side == "reflected" else fs * Ts + (1 - fs) * Tp
-        out.append(v)
-    return out
 
 
 def r_layer(n1, n2, d, c1, lam, pol):
