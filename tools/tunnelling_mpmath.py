@@ -22,7 +22,6 @@ Run: python3 tools/tunnelling_mpmath.py > tests/data/tunnelling_mpmath.csv
 """
 import glob
 import json
-import math
 import os
 import sys
 
