@@ -6,6 +6,7 @@
 //! both beams or refuse the scene with its reason, never report the top beam alone. Expected
 //! values come from `tools/beyond_critical_plate_mpmath.py` (tests/data), never from the tracer.
 
+use crate::support::two_beam_plate_rows;
 use fringe::harness::analytic::plate::TwoBeamPlate;
 use fringe::harness::case::{load, run};
 use std::path::{Path, PathBuf};
@@ -14,32 +15,11 @@ fn root() -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR"))
 }
 
-/// Rows of tests/data/beyond_critical_plate_mpmath.csv: the plate, the geometry, λ, tan θt of
-/// the beam through the plate, and the 50-digit intensity.
-fn rows() -> Vec<(TwoBeamPlate, f64, f64, f64, f64)> {
-    let text = std::fs::read_to_string(root().join("tests/data/beyond_critical_plate_mpmath.csv"))
-        .expect("the committed 50-digit data");
-    text.lines()
-        .skip(1)
-        .map(|line| {
-            let v: Vec<f64> = line.split(',').map(|f| f.parse().unwrap()).collect();
-            let t = TwoBeamPlate {
-                n1: v[0],
-                n2: v[1],
-                thickness_m: v[2],
-                h_src_m: v[3],
-                h_obs_m: v[4],
-            };
-            (t, v[5], v[6], v[7], v[8])
-        })
-        .collect()
-}
-
 /// The closed form beyond the critical angle (|r12| = 1 with its phase for the top beam, the
 /// beam through the plate at tan θt from 12 to 87) against 50 digits: 1e-14 relative.
 #[test]
 fn two_beam_closed_form_beyond_the_critical_angle_holds_to_1e_14() {
-    let rows = rows();
+    let rows = two_beam_plate_rows("beyond_critical_plate_mpmath.csv");
     assert!(rows.len() >= 5);
     let mut bad = Vec::new();
     for (t, x, lambda_m, tan_t, exact) in rows {
@@ -67,7 +47,7 @@ fn two_beam_closed_form_beyond_the_critical_angle_holds_to_1e_14() {
 /// beam's |r12|² = 1, so a tracer that drops it is far outside any tolerance.
 #[test]
 fn the_beam_through_the_plate_is_not_negligible() {
-    for (_, x, _, _, exact) in rows() {
+    for (_, x, _, _, exact) in two_beam_plate_rows("beyond_critical_plate_mpmath.csv") {
         if x >= 125.0 {
             assert!((exact - 1.0).abs() > 1e-2, "x = {x}: I = {exact}");
         }

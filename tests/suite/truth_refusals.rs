@@ -15,40 +15,16 @@
 //! 3. Grazing in a plate of low index under a dense ambient, (n cos θ)² re-based per medium as
 //!    q² + n'² − n² lost its digits; the path solver now carries Snell's invariant p².
 
-use fringe::harness::analytic::plate::TwoBeamPlate;
+use crate::support::two_beam_plate_rows;
 use fringe::harness::fuzz::{self, Family, Verdict};
-use std::path::{Path, PathBuf};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
-/// Rows of tests/data/steep_plate_mpmath.csv: plate, x, λ, tan θt and the 60-digit intensity.
-fn steep_rows() -> Vec<(TwoBeamPlate, f64, f64, f64, f64)> {
-    let text = std::fs::read_to_string(root().join("tests/data/steep_plate_mpmath.csv"))
-        .expect("the committed 60-digit data");
-    text.lines()
-        .skip(1)
-        .map(|line| {
-            let v: Vec<f64> = line.split(',').map(|f| f.parse().unwrap()).collect();
-            let t = TwoBeamPlate {
-                n1: v[0],
-                n2: v[1],
-                thickness_m: v[2],
-                h_src_m: v[3],
-                h_obs_m: v[4],
-            };
-            (t, v[5], v[6], v[7], v[8])
-        })
-        .collect()
-}
+use std::path::Path;
 
 /// The two-beam closed form with the beam through the plate at tan θt from 1e2 to 1e10 (the
 /// refusal stood at 1e3) against 60 digits: 1e-14 relative, on five plates from n = 1.9 over
 /// 1.73 to n = 4.76 over 0.0092.
 #[test]
 fn steep_plate_beam_closed_form_holds_to_1e_14_up_to_tan_theta_t_1e10() {
-    let rows = steep_rows();
+    let rows = two_beam_plate_rows("steep_plate_mpmath.csv");
     assert_eq!(rows.len(), 25);
     assert!(rows.iter().any(|r| r.3 >= 1e10));
     let mut bad = Vec::new();
@@ -70,7 +46,7 @@ fn steep_plate_beam_closed_form_holds_to_1e_14_up_to_tan_theta_t_1e10() {
 /// tracer that dropped it would fail by far more than any tolerance.
 #[test]
 fn the_steep_beam_matters_where_it_was_refused() {
-    for (t, _, _, tan_t, exact) in steep_rows() {
+    for (t, _, _, tan_t, exact) in two_beam_plate_rows("steep_plate_mpmath.csv") {
         if tan_t > 999.0 && tan_t < 1001.0 {
             assert!((exact - 1.0).abs() > 1e-4, "{t:?}: I = {exact}");
         }

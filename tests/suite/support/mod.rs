@@ -40,3 +40,36 @@ pub fn mpmath_profiles(csv: &str) -> BTreeMap<String, Vec<f64>> {
     }
     out
 }
+
+/// The rows of a two-beam plate CSV under `tests/data/` (`n1,n2,thickness_m,h_src_m,h_obs_m,x_m,
+/// lambda_m,tan_theta_t,intensity`, written by `tools/beyond_critical_plate_mpmath.py` or
+/// `tools/steep_plate_mpmath.py`): the plate, x (m), λ (m), tan θt of the beam through the plate
+/// and the high-precision intensity.
+pub fn two_beam_plate_rows(
+    csv: &str,
+) -> Vec<(
+    fringe::harness::analytic::plate::TwoBeamPlate,
+    f64,
+    f64,
+    f64,
+    f64,
+)> {
+    let path = PathBuf::from(env!("CARGO_MANIFEST_DIR"))
+        .join("tests/data")
+        .join(csv);
+    let text = std::fs::read_to_string(&path).expect("the committed high-precision data");
+    text.lines()
+        .skip(1)
+        .map(|line| {
+            let v: Vec<f64> = line.split(',').map(|f| f.parse().unwrap()).collect();
+            let t = fringe::harness::analytic::plate::TwoBeamPlate {
+                n1: v[0],
+                n2: v[1],
+                thickness_m: v[2],
+                h_src_m: v[3],
+                h_obs_m: v[4],
+            };
+            (t, v[5], v[6], v[7], v[8])
+        })
+        .collect()
+}
