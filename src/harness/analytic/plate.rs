@@ -513,11 +513,7 @@ impl Film {
         epsilon: f64,
     ) -> usize {
         let inc: Incidence = incidence.into();
-        let mut n = 1;
-        while self.tail_bound(inc, lambda_m, pol, n) > epsilon && n < 100_000 {
-            n += 1;
-        }
-        n
+        orders_below(epsilon, |n| self.tail_bound(inc, lambda_m, pol, n))
     }
 
     /// The number of reflected orders needed so that the amplitude tail bound is ≤ `epsilon`:
@@ -530,12 +526,18 @@ impl Film {
         epsilon: f64,
     ) -> usize {
         let inc: Incidence = incidence.into();
-        let mut n = 1;
-        while self.r_tail_bound(inc, lambda_m, pol, n) > epsilon && n < 100_000 {
-            n += 1;
-        }
-        n
+        orders_below(epsilon, |n| self.r_tail_bound(inc, lambda_m, pol, n))
     }
+}
+
+/// The first number of orders n ≥ 1 at which the decreasing tail `bound(n)` is ≤ `epsilon`
+/// (at most 100 000).
+fn orders_below(epsilon: f64, bound: impl Fn(usize) -> f64) -> usize {
+    let mut n = 1;
+    while bound(n) > epsilon && n < 100_000 {
+        n += 1;
+    }
+    n
 }
 
 /// Geometry of the two-beam point-source plate (paper Fig. 4 left): source at height `h_src`
