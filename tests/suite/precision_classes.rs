@@ -14,6 +14,7 @@
 //!   from its faces' rounded points; it now reads the thickness as held, and forms the two-beam
 //!   sum without cancellation.
 
+use crate::support::traced_error;
 use fringe::accumulate::fidelity::Fidelity;
 use fringe::harness::case::load;
 use fringe::harness::case::run;
@@ -27,20 +28,6 @@ fn root() -> PathBuf {
 /// The 50-digit values by case name, in probe order.
 fn mpmath_values() -> BTreeMap<String, Vec<f64>> {
     crate::support::mpmath_profiles("precision_classes_mpmath.csv")
-}
-
-/// Largest relative deviation of the traced `vector` values of `name` from the 50-digit ones
-/// (relative to the largest 50-digit value of the profile, as the gate measures).
-fn traced_error(name: &str, truth: &[f64]) -> f64 {
-    let r = run_file(&root().join(format!("tests/fuzz_found/{name}.json")));
-    let traced = &r.metrics[0].traced[&Fidelity::Vector];
-    assert_eq!(traced.len(), truth.len(), "{name}: probe points");
-    let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-    traced
-        .iter()
-        .zip(truth)
-        .map(|(t, m)| (t - m).abs() / scale)
-        .fold(0.0, f64::max)
 }
 
 fn check(names: &[&str]) {

@@ -11,40 +11,13 @@
 //! apart, so each round trip's optical path ΔS = 3.7e-11 m was ~1.6e-17 m off (4e-7 of it) and
 //! T 8.8e-7 off (#114); the metre-long plates of #159 and #291 lost 1e-8 the same way.
 
-use fringe::accumulate::fidelity::Fidelity;
-use fringe::harness::case::load;
-use fringe::harness::case::run;
+use crate::support::traced_error;
 use fringe::optics::double_double::projection;
 use glam::DVec3;
 use std::collections::BTreeMap;
-use std::path::{Path, PathBuf};
-
-fn root() -> PathBuf {
-    PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-}
-
 /// The 50-digit values by case name, in probe order.
 fn mpmath_values() -> BTreeMap<String, Vec<f64>> {
     crate::support::mpmath_profiles("airy_tracer_mpmath.csv")
-}
-
-fn run_file(path: &Path) -> run::CaseResult {
-    let text = std::fs::read_to_string(path).unwrap();
-    run::run_with(&load::parse(path, &text).expect("a valid case"), false).unwrap()
-}
-
-/// Largest deviation of the traced `vector` values of `name` from the 50-digit ones, relative
-/// to the largest 50-digit value of the profile (as the gate measures).
-fn traced_error(name: &str, truth: &[f64]) -> f64 {
-    let r = run_file(&root().join(format!("tests/fuzz_found/{name}.json")));
-    let traced = &r.metrics[0].traced[&Fidelity::Vector];
-    assert_eq!(traced.len(), truth.len(), "{name}: probe points");
-    let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-    traced
-        .iter()
-        .zip(truth)
-        .map(|(t, m)| (t - m).abs() / scale)
-        .fold(0.0, f64::max)
 }
 
 fn check(name: &str, bound: f64) {
