@@ -2,13 +2,16 @@
 """50-digit values of layers traced beyond their top face's critical angle (frustrated total
 reflection, PHYSICS.md sec. 5) for tests/suite/truth_tunnelling.rs.
 
-Airy cases (tests/tunnelling/*.json with an `airy` reference): each case file is evaluated from
+Airy cases (tests/tunnelling/*.json, observed on the reflected side, and
+tests/tunnelling_transmitted/*.json, the same films and one whose substrate is beyond its own
+critical angle over part of the sweep, observed on the transmitted side: the tunnelled wave
+the tracer starts on the far face, EventKind::Tunnel): each case file is evaluated from
 its own numbers at every probe point, as tools/precision_classes_mpmath.py evaluates its `airy`
 cases (the incidence direction built in binary64 as `case::build::incidence_direction` builds
 it, cos t1 = |d.N|/(|d||N|) of the binary64 vectors in 50 digits, thickness um*1e-6 and
 wavelength nm*1e-9 as the binary64 products the loader forms), then the Airy sum of
 tools/airy_mpmath.py with the complex cos t2 = +i sqrt(n1^2 sin^2 t1 - n2^2)/n2 (e^{-i w t}):
-R, mixed over s and p by the source's polarization (linear at angle a from the s axis: cos^2 a
+R or T = (n3 cos t3)/(n1 cos t1)|t|^2 (0 where n1 sin t1 >= n3: no wave leaves), mixed over s and p by the source's polarization (linear at angle a from the s axis: cos^2 a
 of s; the paper's two unpolarized channels: 1/2 each).
 
 Two-beam case (TWO_BEAM below, the scene tests/suite/truth_tunnelling.rs builds): a point source
@@ -35,6 +38,7 @@ from precision_classes_mpmath import airy_case  # noqa: E402
 mp.mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
 CASES = os.path.join(HERE, "..", "tests", "tunnelling")
+TRANSMITTED = os.path.join(HERE, "..", "tests", "tunnelling_transmitted")
 
 
 def r_layer(n1, n2, d, c1, lam, pol):
@@ -78,6 +82,11 @@ def main():
     for name, n1, n2, d, hs, ho, lam, xs in TWO_BEAM:
         for k, x in enumerate(xs):
             print(f"{name},{k}," + mp.nstr(two_beam(n1, n2, d, hs, ho, x, lam), 30))
+    for path in sorted(glob.glob(os.path.join(TRANSMITTED, "*.json"))):
+        case = json.load(open(path))
+        name = case["name"]
+        for i, v in enumerate(airy_case(case)):
+            print(f"{name},{i},{mp.nstr(v, 30)}")
 
 
 if __name__ == "__main__":

@@ -96,7 +96,7 @@ pub fn layer_sensitivity(
     let coefficients = |c: f64| {
         let f = fresnel::fresnel(n1, n2, c);
         match (kind, layer) {
-            (EventKind::Reflect, Some(l)) if f.total_internal_reflection => {
+            (EventKind::Reflect | EventKind::Tunnel, Some(l)) if f.total_internal_reflection => {
                 let q2_i = two_prod(n1 * c, n1 * c);
                 let q2_t = q2_i + two_prod(n2, n2) - two_prod(n1, n1);
                 let q2_3 = q2_i + two_prod(l.n_beyond, l.n_beyond) - two_prod(n1, n1);
@@ -106,8 +106,13 @@ pub fn layer_sensitivity(
                     l.thickness_m,
                     l.lambda_m,
                 );
-                [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
+                if kind == EventKind::Tunnel {
+                    fl.t
+                } else {
+                    [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
+                }
             }
+            (EventKind::Tunnel, _) => [Complex64::from(0.0); 2],
             (EventKind::Reflect, _) => [f.r_s, f.r_p],
             (EventKind::Refract, _) => [f.t_s, f.t_p],
         }

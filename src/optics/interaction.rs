@@ -23,6 +23,35 @@ pub enum CoefficientModel {
     PaperRules,
 }
 
+/// Which child of an encounter a path follows.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum Child {
+    /// The reflected wave.
+    Reflected,
+    /// The refracted (transmitted) wave; none under total internal reflection.
+    Refracted,
+    /// The tunnelled wave of frustrated total reflection (docs/PHYSICS.md §5): at a face lit
+    /// beyond its critical angle with a [`Layer`] behind it, the wave the evanescent field
+    /// launches from the layer's far face into the medium beyond, with the layer's t_layer
+    /// (s, p) of [`fresnel::frustrated_layer`]. None where the face is not lit beyond its
+    /// critical angle, has no layer behind it, or the medium beyond is beyond its own critical
+    /// angle too. The child leaves from the hit point: moving it to the far face (the foot of
+    /// the normal through the hit point, with no optical path) is the caller's, who knows the
+    /// scene (`trace::path::tunnel_exit`).
+    Tunnelled,
+}
+
+impl From<bool> for Child {
+    /// `true`: [`Child::Reflected`], `false`: [`Child::Refracted`].
+    fn from(reflect: bool) -> Self {
+        if reflect {
+            Child::Reflected
+        } else {
+            Child::Refracted
+        }
+    }
+}
+
 /// What is on the two sides of the surface.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum SurfaceOptics {
@@ -137,6 +166,18 @@ struct Encounter {
     /// children carry to the next parallel face ([`Ray::normal_q2`]).
     q2_i: DoubleDouble,
     q2_t: DoubleDouble,
+    /// The tunnelled wave's coefficients, if the face is lit beyond its critical angle with a
+    /// layer behind it and a wave can leave the far face ([`Child::Tunnelled`]).
+    tunnel: Option<Tunnelling>,
+}
+
+/// The tunnelled wave of an [`Encounter`]: the layer's t (s, p) under the model, the index
+/// beyond the layer and (n3 cos θ3)² (double-double, from Snell's invariant).
+#[derive(Clone, Copy)]
+struct Tunnelling {
+    t: [Complex64; 2],
+    n3: f64,
+    q2_3: DoubleDouble,
 }
 
 /// The squared normal wavevector components (n1 cos θi)² and (n2 cos θt)² (the second
@@ -224,6 +265,7 @@ impl Encounter {
         // phases in the opposite time convention (the complex conjugates of P5, P6,
         // [`fresnel::paper_rules`]), so it takes the conjugate of the coupling's term.
         let layer = hit.layers[usize::from(d_i.dot(hit.normal) >= 0.0)];
+        let mut tunnel = None;
         if let (Some(l), SurfaceOptics::Dielectric { .. }) = (layer, hit.optics)
             && q2_t.hi < 0.0
         {
@@ -240,6 +282,20 @@ impl Encounter {
             };
             coefficients.r_s += dr_s;
             coefficients.r_p += dr_p;
+            // The tunnelled wave (a wave leaves the far face only where (n3 cos θ3)² > 0); the
+            // paper's rung takes the conjugate as for the reflected coupling, so every rung
+            // keeps R + T = 1.
+            if q2_3.hi > 0.0 {
+                let t = match model {
+                    CoefficientModel::Vector => f.t,
+                    CoefficientModel::PaperRules => f.t.map(|t| t.conj()),
+                };
+                tunnel = Some(Tunnelling {
+                    t,
+                    n3: l.n_beyond,
+                    q2_3,
+                });
+            }
         }
         Encounter {
             d_i,
@@ -250,6 +306,7 @@ impl Encounter {
             coefficients,
             q2_i,
             q2_t,
+            tunnel,
         }
     }
 
@@ -357,12 +414,36 @@ fn refracted(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
     })
 }
 
-/// The branch a path follows (`reflect`: the reflected one).
-fn followed(en: &Encounter, hit: &InterfaceHit, reflect: bool) -> Option<Branch> {
-    if reflect {
-        Some(reflected(en, hit))
-    } else {
-        refracted(en, hit)
+/// Step 5: the tunnelled branch ([`Child::Tunnelled`]), leaving from the hit point along the
+/// direction Snell's law gives from n1 to n3 (cos θ3 from the double-double (n3 cos θ3)²), with
+/// the layer's t (s, p) in the (s, p) frames of the face.
+fn tunnelled(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
+    let tu = en.tunnel?;
+    Some(Branch {
+        dir: snell_direction(
+            en.d_i,
+            hit.normal,
+            (en.n1, tu.n3),
+            tu.q2_3.sqrt().to_f64() / tu.n3,
+        ),
+        q2: tu.q2_3,
+        c: tu.t,
+        index: tu.n3,
+        keep: hit.coherence.refracted_keeps,
+        entry: LedgerEntry::Tunnel {
+            surface: hit.surface,
+            t_s: tu.t[0],
+            t_p: tu.t[1],
+        },
+    })
+}
+
+/// The branch a path follows.
+fn followed(en: &Encounter, hit: &InterfaceHit, which: Child) -> Option<Branch> {
+    match which {
+        Child::Reflected => Some(reflected(en, hit)),
+        Child::Refracted => refracted(en, hit),
+        Child::Tunnelled => tunnelled(en, hit),
     }
 }
 
@@ -411,16 +492,17 @@ pub fn interact(ray: &Ray, hit: &InterfaceHit, model: CoefficientModel) -> Child
     }
 }
 
-/// The one child of `ray` at `hit` that a path follows (`reflect`: the reflected one, else the
-/// refracted one, `None` under TIR or at a mirror): the same ray [`interact`] returns, without
-/// building the other child.
+/// The one child of `ray` at `hit` that a path follows (`which`: a [`Child`], or `true` for the
+/// reflected one and `false` for the refracted one, `None` under TIR or at a mirror): the same
+/// ray [`interact`] returns, without building the other child. A [`Child::Tunnelled`] ray
+/// leaves from the hit point ([`Child`] says who moves it to the far face).
 pub fn interact_along(
     mut ray: Ray,
     hit: &InterfaceHit,
     model: CoefficientModel,
-    reflect: bool,
+    which: impl Into<Child>,
 ) -> Option<Ray> {
-    interact_along_in_place(&mut ray, hit, model, reflect).then_some(ray)
+    interact_along_in_place(&mut ray, hit, model, which).then_some(ray)
 }
 
 /// [`interact_along`] on the ray in place: false, with the ray partly updated, where
@@ -429,10 +511,10 @@ pub(crate) fn interact_along_in_place(
     ray: &mut Ray,
     hit: &InterfaceHit,
     model: CoefficientModel,
-    reflect: bool,
+    which: impl Into<Child>,
 ) -> bool {
     let sp = split(ray, hit, model);
-    let Some(b) = followed(&sp.encounter, hit, reflect) else {
+    let Some(b) = followed(&sp.encounter, hit, which.into()) else {
         return false;
     };
     child(ray, &sp, hit, b);
@@ -485,11 +567,11 @@ pub fn interact_along_shared(
     others: &mut [JonesFrame],
     hit: &InterfaceHit,
     model: CoefficientModel,
-    reflect: bool,
+    which: impl Into<Child>,
 ) -> bool {
     lead.advance_to(hit.point);
     let encounter = Encounter::new(lead.dir, lead.index, lead.normal_q2, hit, model);
-    let Some(b) = followed(&encounter, hit, reflect) else {
+    let Some(b) = followed(&encounter, hit, which.into()) else {
         return false;
     };
     for o in others.iter_mut() {

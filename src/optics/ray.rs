@@ -51,6 +51,18 @@ pub enum LedgerEntry {
         /// Applied p coefficient.
         t_p: Complex64,
     },
+    /// A tunnelled (frustrated-TIR) transmission through the layer behind `surface`, lit beyond
+    /// that face's critical angle, with the layer's applied t_s, t_p (docs/PHYSICS.md §5): the
+    /// ray jumps to the layer's far face with no path of its own (all the layer's phase is in
+    /// t).
+    Tunnel {
+        /// The lit face's index in the scene.
+        surface: usize,
+        /// Applied s coefficient.
+        t_s: Complex64,
+        /// Applied p coefficient.
+        t_p: Complex64,
+    },
     /// A coherence change at `surface` (the child lost coherence, or the coherence length rule).
     CoherenceLost {
         /// The surface's index in the scene (`None`: the coherence length rule).

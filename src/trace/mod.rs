@@ -275,6 +275,26 @@ fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> Inter
     }
 }
 
+/// After a tunnel event at `point` (the ray arrived along `u_in`): the ray leaves from the foot
+/// of the normal on the layer's far face ([`path::tunnel_exit`], the point the path solver
+/// starts the next segment from), with no optical path for the jump (all of the layer's phase
+/// is in its t_layer, docs/PHYSICS.md §5). Nothing for any other event.
+#[inline]
+fn tunnel_jump(
+    scene: &Scene,
+    optics: &SceneOptics,
+    ev: Event,
+    point: DVec3,
+    u_in: DVec3,
+    ray: &mut Ray,
+) {
+    if ev.kind == EventKind::Tunnel {
+        let (exit, _) = path::tunnel_exit(scene, optics, ev.surface, point, u_in)
+            .expect("a traced tunnel event has a layer behind its face");
+        ray.origin = exit;
+    }
+}
+
 /// The events of a solved path with the points where they happen.
 #[inline]
 fn events_of(path: &SolvedPath) -> impl Iterator<Item = (Event, DVec3)> + '_ {
@@ -333,9 +353,10 @@ pub fn propagate(
     for (ev, point) in events_of(path) {
         let hit = hit_at(scene, optics, ev, point);
         let before = (ray.index, ray.dir);
-        ray = interact_along(ray, &hit, model, ev.kind == EventKind::Reflect)
+        ray = interact_along(ray, &hit, model, ev.kind.child())
             .expect("solved paths only refract where a refracted ray exists");
         onto_plane(scene, ev.surface, point, before, &mut ray);
+        tunnel_jump(scene, optics, ev, point, before.1, &mut ray);
     }
     end_ray(&mut ray, target, coherence_length_m);
     ray
@@ -432,26 +453,28 @@ impl ChannelRays {
     #[inline]
     fn interact(
         &mut self,
-        scene: &Scene,
+        (scene, optics): (&Scene, &SceneOptics),
         (ev, hit): (Event, &InterfaceHit),
         model: CoefficientModel,
         others: usize,
     ) -> bool {
-        let reflect = ev.kind == EventKind::Reflect;
+        let which = ev.kind.child();
         match self {
             ChannelRays::Together { lead, frames } => {
                 let before = (lead.index, lead.dir);
-                let ok = interact_along_shared(lead, &mut frames[..others], hit, model, reflect);
+                let ok = interact_along_shared(lead, &mut frames[..others], hit, model, which);
                 if ok {
                     onto_plane(scene, ev.surface, hit.point, before, lead);
+                    tunnel_jump(scene, optics, ev, hit.point, before.1, lead);
                 }
                 ok
             }
             ChannelRays::Apart(rays) => rays.iter_mut().all(|ray| {
                 let before = (ray.index, ray.dir);
-                let ok = interact_along_in_place(ray, hit, model, reflect);
+                let ok = interact_along_in_place(ray, hit, model, which);
                 if ok {
                     onto_plane(scene, ev.surface, hit.point, before, ray);
+                    tunnel_jump(scene, optics, ev, hit.point, before.1, ray);
                 }
                 ok
             }),
@@ -516,7 +539,7 @@ fn carry(
     let others = channels.len().saturating_sub(1);
     for (event, (ev, point)) in events_of(path).enumerate() {
         let hit = hit_at(scene, optics, ev, point);
-        if !rays.interact(scene, (ev, &hit), model, others) {
+        if !rays.interact((scene, optics), (ev, &hit), model, others) {
             return Err(PathError::CriticalAngle { event });
         }
     }
@@ -752,7 +775,7 @@ fn far_field_walk(
                             let (ev, point) = paths.event(k - 1);
                             let mut next = stack[k - 1].clone();
                             let hit = hit_at(scene, optics, ev, point);
-                            if !next.interact(scene, (ev, &hit), model, others) {
+                            if !next.interact((scene, optics), (ev, &hit), model, others) {
                                 stopped = Some(k - 1);
                                 break;
                             }

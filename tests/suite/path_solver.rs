@@ -121,6 +121,9 @@ fn my_trace(p: &Plate, o: DVec3, d: DVec3, seq: &[Event]) -> Option<(Vec<DVec3>,
                 d = (tang - c2.sqrt() * n_o).normalize();
                 n = n2;
             }
+            // This reference tracer follows rays only (no layer is lit beyond its critical
+            // angle in the scenes it checks).
+            EventKind::Tunnel => return None,
         }
         pts.push(x);
         o = x;

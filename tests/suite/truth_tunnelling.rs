@@ -340,3 +340,198 @@ fn a_point_source_over_a_thin_gap_beyond_the_critical_angle_is_traced() {
         .expect("beyond the critical angle");
     assert!(fr.amplitude > 1e-6, "{}", fr.amplitude);
 }
+
+/// The traced transmitted side of the films beyond the critical angle of their top face
+/// (`tests/tunnelling_transmitted/*.json`, issue #12): the tunnelled wave the tracer starts on the
+/// far face (`EventKind::Tunnel`, docs/PHYSICS.md §5) against the 50-digit T of each case's own
+/// binary64 numbers (`tools/tunnelling_mpmath.py`): a 50 nm gap (strong coupling, s), a 0.3 µm
+/// layer on a denser substrate (p), a 1.5 µm gap on n = 4 (weak coupling, T down to 7e-17,
+/// unpolarized), a rotated frame with mixed polarization on a substrate, a sweep across the
+/// critical angle (orders inside the film below it, the tunnelled wave beyond), and a substrate
+/// that is beyond its own critical angle over most of the sweep (T = 0 exactly there: no wave
+/// leaves). Each was refused before ("this frustrated total reflection moves T by …").
+#[test]
+fn films_beyond_the_critical_angle_transmit_the_tunnelled_wave_as_50_digits() {
+    let truth = crate::support::mpmath_profiles("tunnelling_mpmath.csv");
+    let mut names = Vec::new();
+    let mut dark = 0;
+    for entry in std::fs::read_dir(root().join("tests/tunnelling_transmitted")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_str().unwrap().to_string();
+        let r = run_file(&path);
+        let m = &r.metrics[0];
+        let want = &truth[&name];
+        let traced = &m.traced[&Fidelity::Vector];
+        assert_eq!(traced.len(), want.len(), "{name}");
+        let (mut e_traced, mut e_closed) = (0.0f64, 0.0f64);
+        for (k, ((t, c), w)) in traced.iter().zip(&m.analytic).zip(want).enumerate() {
+            if *w == 0.0 {
+                // No wave leaves the far face: nothing is traced there, and T is 0 exactly.
+                assert_eq!((*t, *c), (0.0, 0.0), "{name} point {k}");
+                dark += 1;
+                continue;
+            }
+            e_traced = e_traced.max((t - w).abs() / w);
+            e_closed = e_closed.max((c - w).abs() / w);
+            println!("{name} {k}: traced {t:e}, closed form {c:e}, 50 digits {w:e}");
+        }
+        println!("{name}: traced {e_traced:.3e}, closed form {e_closed:.3e} relative to 50 digits");
+        assert!(e_closed <= 1e-13, "{name}: closed form {e_closed:e}");
+        assert!(e_traced <= 1e-12, "{name}: traced {e_traced:e}");
+        let tol = m.tolerances[&Fidelity::Vector];
+        let gate = m.stats(Fidelity::Vector).expect("vector stats").max_abs_dev;
+        assert!(gate <= tol, "{name}: the gate, {gate:e} > {tol:e}");
+        names.push(name);
+    }
+    assert!(names.len() >= 6, "{names:?}");
+    assert!(
+        dark >= 5,
+        "points beyond the substrate's critical angle: {dark}"
+    );
+}
+
+/// Power is conserved by the traced waves: at every probe angle the traced reflected R
+/// (`tests/tunnelling/X.json`) and the traced transmitted T (`tests/tunnelling_transmitted/X_t.json`,
+/// the same scene observed below) of a lossless film beyond the critical angle sum to 1, from
+/// the reflected child's r_layer and the tunnelled child's t_layer, each carried through the
+/// tracer's own frames and power factor.
+#[test]
+fn the_traced_reflected_and_tunnelled_waves_carry_all_the_power() {
+    let mut pairs = 0;
+    let mut worst = 0.0f64;
+    for entry in std::fs::read_dir(root().join("tests/tunnelling")).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_stem().unwrap().to_str().unwrap().to_string();
+        let below = root().join(format!("tests/tunnelling_transmitted/{name}_t.json"));
+        let (r, t) = (run_file(&path), run_file(&below));
+        let (r, t) = (
+            &r.metrics[0].traced[&Fidelity::Vector],
+            &t.metrics[0].traced[&Fidelity::Vector],
+        );
+        assert_eq!(r.len(), t.len(), "{name}");
+        for (k, (a, b)) in r.iter().zip(t).enumerate() {
+            let dev = (a + b - 1.0).abs();
+            println!("{name} {k}: R {a:e} + T {b:e} − 1 = {dev:e}");
+            worst = worst.max(dev);
+        }
+        pairs += 1;
+    }
+    println!("|R + T − 1| ≤ {worst:.3e} over {pairs} films");
+    assert!(pairs >= 5, "{pairs}");
+    assert!(worst <= 1e-14, "{worst:e}");
+}
+
+/// The tunnelled child at one face (`interaction::Child::Tunnelled`): a 100 nm air gap between
+/// n = 1.5 and a substrate n = 1.7 lit at 60° (beyond the critical angle 41.8°). The child
+/// travels in n3 along Snell's direction from n1 to n3 (n1 sin θ1 = n3 sin θ3, in the plane of
+/// incidence), carries E·s = t_s (E_in·s) and E·p = t_p (E_in·p_in) with the layer's t of the
+/// independent Airy sum (`Film::t`), its ledger records them, and the paper's rung takes their
+/// conjugates (the opposite time convention, as for r_layer: same |t|). There is no tunnelled
+/// child without a layer, below the critical angle, or where the substrate (n3 = 1.2 here) is
+/// beyond its own critical angle.
+#[test]
+fn the_tunnelled_child_leaves_along_snell_with_the_layer_transmission() {
+    use fringe::optics::interaction::{Child, interact_along};
+    use fringe::optics::ray::LedgerEntry;
+    let (n1, n2, n3, lambda, d) = (1.5, 1.0, 1.7, 550e-9, 1e-7);
+    let ray_at = |deg: f64| {
+        let theta = deg.to_radians();
+        let d_i = DVec3::new(theta.sin(), 0.0, -theta.cos());
+        let ray = Ray::linear(
+            DVec3::new(-theta.tan(), 0.0, 1.0),
+            d_i,
+            DVec3::new(0.6, 0.8, 0.0).normalize(),
+            1.0,
+            lambda,
+            n1,
+        );
+        (ray, d_i)
+    };
+    let hit = |layer: Option<f64>, beyond: f64| InterfaceHit {
+        surface: 0,
+        point: DVec3::ZERO,
+        normal: DVec3::Z,
+        optics: SurfaceOptics::Dielectric {
+            n_front: n1,
+            n_back: n2,
+        },
+        coherence: CoherenceRules::default(),
+        layers: [
+            layer.map(|thickness_m| Layer {
+                partner: 1,
+                thickness_m,
+                n_beyond: beyond,
+                lambda_m: lambda,
+            }),
+            None,
+        ],
+    };
+    let (ray, d_i) = ray_at(60.0);
+    let child = interact_along(
+        ray.clone(),
+        &hit(Some(d), n3),
+        CoefficientModel::Vector,
+        Child::Tunnelled,
+    )
+    .expect("a tunnelled wave");
+    // Snell from n1 to n3, in the plane of incidence (y = 0), going down.
+    let sin3 = n1 * 60f64.to_radians().sin() / n3;
+    let want_dir = DVec3::new(sin3, 0.0, -(1.0 - sin3 * sin3).sqrt());
+    assert!((child.dir - want_dir).length() <= 4e-16, "{}", child.dir);
+    assert_eq!(child.index, n3);
+    let film = Film {
+        n1,
+        n2,
+        n3,
+        thickness_m: d,
+    };
+    let inc = Incidence::between(d_i, DVec3::Z);
+    let s = DVec3::Y * -1.0; // d_i × N normalized: (sin θ, 0, −cos θ) × z = (0, −sin θ, 0)
+    let p_in = d_i.cross(s);
+    let p_out = child.dir.cross(s);
+    let along = |e: [Complex64; 3], v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
+    let (e_in, e_out) = (ray.field(), child.field());
+    let t_s = film.t(inc, lambda, Pol::S);
+    let t_p = film.t(inc, lambda, Pol::P);
+    let got_s = along(e_out, s) / along(e_in, s);
+    let got_p = along(e_out, p_out) / along(e_in, p_in);
+    println!("t_s {got_s} vs {t_s}, t_p {got_p} vs {t_p}");
+    assert!((got_s - t_s).norm() <= 1e-15 * t_s.norm(), "s");
+    assert!((got_p - t_p).norm() <= 1e-15 * t_p.norm(), "p");
+    assert!(
+        t_s.norm() > 0.1 && t_p.norm() > 0.1,
+        "the coupling matters here"
+    );
+    match child.ledger.entries.iter().last() {
+        Some(LedgerEntry::Tunnel {
+            surface: 0,
+            t_s: a,
+            t_p: b,
+        }) => {
+            assert!((*a - t_s).norm() <= 1e-15 && (*b - t_p).norm() <= 1e-15);
+        }
+        other => panic!("last ledger entry {other:?}"),
+    }
+    let paper = interact_along(
+        ray.clone(),
+        &hit(Some(d), n3),
+        CoefficientModel::PaperRules,
+        Child::Tunnelled,
+    )
+    .expect("a tunnelled wave under the paper's rules");
+    let paper_s = along(paper.field(), s) / along(e_in, s);
+    assert!((paper_s - got_s.conj()).norm() <= 1e-15, "paper: {paper_s}");
+    // No tunnelled wave: no layer, below the critical angle, a substrate beyond its own.
+    let none = |ray: &Ray, h: &InterfaceHit| {
+        interact_along(ray.clone(), h, CoefficientModel::Vector, Child::Tunnelled).is_none()
+    };
+    assert!(none(&ray, &hit(None, n3)), "no layer");
+    assert!(
+        none(&ray_at(30.0).0, &hit(Some(d), n3)),
+        "below the critical angle"
+    );
+    assert!(
+        none(&ray, &hit(Some(d), 1.2)),
+        "n3 beyond its critical angle too"
+    );
+}

@@ -404,16 +404,6 @@ impl Film {
         Some(out)
     }
 
-    /// The thickness (m) from which the evanescent coupling `deviation` (of a film of this
-    /// thickness) falls to `limit`, if it decays as e^{−2κd} from here: d + ln(deviation/limit)/(2κ).
-    pub(crate) fn thickness_for(&self, f: &Frustration, deviation: f64, limit: f64) -> f64 {
-        if f.kappa_per_m > 0.0 && deviation > limit {
-            self.thickness_m + (deviation / limit).ln() / (2.0 * f.kappa_per_m)
-        } else {
-            f64::INFINITY
-        }
-    }
-
     /// The reflection amplitude summed over the first `orders` reflected beams only: order 0 is
     /// r12, order m ≥ 1 is t12 t21 r23 (r21 r23)^{m−1} e^{imβ} (m round trips).
     pub(crate) fn r_truncated(

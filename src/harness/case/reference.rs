@@ -496,24 +496,10 @@ fn airy(
     let inc = Incidence::between(d, nrm);
     let reflected = dir.dot(nrm).signum() != d.dot(nrm).signum();
     // Beyond the critical angle of the top face (frustrated total reflection): the exact Airy
-    // sum with imaginary cos θ2. The tracer applies it to the reflected wave at the top face
-    // (`fresnel::frustrated_layer`), so R is compared at any coupling. It does not yet start a
-    // tunnelled wave on the far face: T is compared only where it is below FTIR_NEGLIGIBLE of
-    // the source intensity (the ray model's T = 0), else refused.
-    if !reflected && let Some(fr) = f.frustration(inc, lambda_m) {
-        if fr.transmittance > FTIR_NEGLIGIBLE {
-            return Err(frustrated_refusal(
-                &f,
-                &fr,
-                fr.transmittance,
-                inc,
-                "T",
-                "film",
-            ));
-        }
-        // The ray model's T = 0, exact to FTIR_NEGLIGIBLE (the probe is dark by physics).
-        return Ok(0.0);
-    }
+    // sum with imaginary cos θ2 (`Film::reflectance`, `Film::transmittance`). The tracer
+    // applies it to the reflected wave at the top face and traces the tunnelled wave from the
+    // far face (`fresnel::frustrated_layer`, `EventKind::Tunnel`), so R and T are compared at
+    // any coupling (docs/PHYSICS.md §5).
     // Split each channel into s and p at the film (one plane of incidence for every beam).
     let s = fresnel::s_direction(d, nrm, src.channels()[0].field_direction(d));
     let p = d.cross(s);
@@ -563,36 +549,6 @@ pub fn frustrated(model: &ReferenceModel, built: &Built, lambda_m: f64) -> bool 
     let inc = Incidence::between(d, built.scene.surfaces[top].plane.normal);
     f.frustration(inc, lambda_m)
         .is_some_and(|fr| fr.transmittance <= FTIR_NEGLIGIBLE)
-}
-
-/// The refusal of a layer lit beyond its top face's critical angle whose evanescent coupling
-/// (`deviation` of the observable `what` from the ray model's total reflection, as a fraction
-/// of the source intensity) is not negligible.
-fn frustrated_refusal(
-    f: &analytic::plate::Film,
-    fr: &analytic::plate::Frustration,
-    deviation: f64,
-    inc: Incidence,
-    what: &str,
-    layer: &str,
-) -> String {
-    let sin1 = f64::from(inc.sin_sq().sqrt());
-    format!(
-        "the light meets the {layer} at θ1 = {:.4}°, beyond the critical angle {:.4}° of its top \
-         face (n1 = {} > n2 = {}): the {layer} carries an evanescent wave (κ = {:.4e} /m) to its \
-         far face, and this frustrated total reflection moves {what} by {deviation:.3e} of the \
-         source intensity from the ray model's total reflection, more than the {:e} a trace can \
-         be held to (docs/PHYSICS.md §5); a {layer} thicker than {:.4e} m (it is {:.4e} m), or θ1 \
-         farther from the critical angle, is accepted",
-        sin1.asin().to_degrees(),
-        (f.n2 / f.n1).asin().to_degrees(),
-        f.n1,
-        f.n2,
-        fr.kappa_per_m,
-        FTIR_NEGLIGIBLE,
-        f.thickness_for(fr, deviation, FTIR_NEGLIGIBLE),
-        f.thickness_m,
-    )
 }
 
 /// The media above, inside and below the plate or wedge `name`, read from its two faces (the

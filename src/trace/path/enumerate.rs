@@ -2,6 +2,7 @@
 //! limits of a case (internal reflections, sequence count).
 
 use super::*;
+use crate::optics::double_double::two_prod;
 
 /// Limits of sequence enumeration.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -159,6 +160,20 @@ fn explore(
         }
         _ => None,
     };
+    // Beyond the critical angle with a layer behind the face: the tunnelled wave.
+    if q2_t.hi < 0.0 {
+        explore_tunnel(
+            scene,
+            optics,
+            (x, d, j),
+            (n1, n2),
+            (q2_i, q2_t),
+            internal,
+            (node, depth),
+            limits,
+            found,
+        );
+    }
     if let Some(d_t) = refracted {
         let child = found.child(
             node,
@@ -181,4 +196,63 @@ fn explore(
             found,
         );
     }
+}
+
+/// The tunnelled child of a ray meeting surface `j` at `x` along `d` beyond its critical angle
+/// (frustrated total reflection, docs/PHYSICS.md §5), when the face has a layer behind it and
+/// a wave can leave its far face ((n3 cos θ3)² > 0, as `stack::tunnel_step` decides): explored
+/// from the foot of the normal on the far face ([`tunnel_exit`]). Kept out of [`explore`]
+/// (never inlined) so that its locals do not enlarge every frame of the recursion, which runs
+/// thousands of events deep for a film near grazing incidence.
+#[inline(never)]
+#[allow(clippy::too_many_arguments)]
+fn explore_tunnel(
+    scene: &Scene,
+    optics: &SceneOptics,
+    (x, d, j): (DVec3, DVec3, usize),
+    (n1, n2): (f64, f64),
+    (q2_i, q2_t): (DoubleDouble, DoubleDouble),
+    internal: usize,
+    (node, depth): (usize, usize),
+    limits: &EnumerationLimits,
+    found: &mut TreeBuilder,
+) {
+    let normal = scene.surfaces[j].plane.normal;
+    let layer = optics.layers[j][usize::from(d.dot(normal) >= 0.0)];
+    let Some(l) = layer else { return };
+    if !matches!(optics.surfaces[j], Some(SurfaceOptics::Dielectric { .. }))
+        || n1 == n2
+        || q2_t.hi >= 0.0
+    {
+        return;
+    }
+    let n3 = l.n_beyond;
+    let q2_3 = q2_i + two_prod(n3, n3) - two_prod(n1, n1);
+    if q2_3.hi <= 0.0 {
+        return;
+    }
+    let Some((exit, partner)) = tunnel_exit(scene, optics, j, x, d) else {
+        return;
+    };
+    let d_3 = interaction::snell_direction(d, normal, (n1, n3), q2_3.sqrt().to_f64() / n3);
+    let child = found.child(
+        node,
+        Event {
+            surface: j,
+            kind: EventKind::Tunnel,
+        },
+    );
+    explore(
+        scene,
+        optics,
+        exit,
+        d_3,
+        n3,
+        Some(partner),
+        Some((normal, q2_3)),
+        internal,
+        (child, depth + 1),
+        limits,
+        found,
+    );
 }

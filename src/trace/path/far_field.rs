@@ -45,6 +45,10 @@ pub(super) struct Beginning {
     pub(super) blocked: Option<PathError>,
     /// The normal and (n cos θ)² after the last event (`Ray::normal_q2`).
     pub(super) q2: Option<(DVec3, DoubleDouble)>,
+    /// Where the next segment starts and the surface it leaves: the last point and the last
+    /// event's surface, except after a tunnel event, where it is the foot of the normal on the
+    /// layer's far face and that face ([`tunnel_exit`]).
+    pub(super) start: (DVec3, Option<usize>),
 }
 
 /// The exact paths of a plane wave into the far field, traced one event at a time so that
@@ -90,6 +94,7 @@ impl<'a> FarFieldPaths<'a> {
             out_of_extent: None,
             blocked: None,
             q2: None,
+            start: (launch, None),
         };
         FarFieldPaths {
             scene,
@@ -141,14 +146,16 @@ impl<'a> FarFieldPaths<'a> {
     pub fn advance(&mut self, ev: Event) -> Result<(), PathError> {
         let k = self.depth();
         let b = self.stack.last().unwrap();
-        let (o, d, n) = (
-            *b.points.last().unwrap(),
-            *b.dirs.last().unwrap(),
-            *b.indices.last().unwrap(),
-        );
-        let from = b.sequence.last().map(|e| e.surface);
+        let ((o, from), d, n) = (b.start, *b.dirs.last().unwrap(), *b.indices.last().unwrap());
         let step = step_planes(self.scene, self.optics, k, ev, (o, d, n), b.q2, from)?;
         let mut next = b.clone();
+        next.start = if ev.kind == EventKind::Tunnel {
+            let (exit, partner) = tunnel_exit(self.scene, self.optics, ev.surface, step.x, d)
+                .ok_or(PathError::NoTunnel { event: k })?;
+            (exit, Some(partner))
+        } else {
+            (step.x, Some(ev.surface))
+        };
         next.q2 = Some(step.q2);
         next.denser_reflections += usize::from(step.denser);
         next.has_tir |= step.tir;
@@ -166,7 +173,7 @@ impl<'a> FarFieldPaths<'a> {
             next.out_of_extent = out_of_extent(self.scene, k, ev, step.x);
         }
         if next.blocked.is_none() {
-            let ends = [b.sequence.last().map(|e| e.surface), Some(ev.surface)];
+            let ends = [from, Some(ev.surface)];
             next.blocked = segment_blocked(self.scene, k, ends, o, d, len);
         }
         next.sequence.push(ev);
@@ -184,18 +191,14 @@ impl<'a> FarFieldPaths<'a> {
             panic!("FarFieldPaths::path needs a far-field target, got {target:?}");
         };
         let b = self.stack.last().unwrap();
-        let (x, d, n) = (
-            *b.points.last().unwrap(),
-            *b.dirs.last().unwrap(),
-            *b.indices.last().unwrap(),
-        );
+        let ((x, from), d, n) = (b.start, *b.dirs.last().unwrap(), *b.indices.last().unwrap());
         let landing_error = far_field_landing(d, dir)?;
         if let Some(e) = b.out_of_extent.clone().or_else(|| b.blocked.clone()) {
             return Err(e);
         }
         // The last segment runs from the last point to infinity.
         let k = self.depth();
-        let ends = [b.sequence.last().map(|e| e.surface), None];
+        let ends = [from, None];
         if let Some(e) = segment_blocked(self.scene, k, ends, x, d, f64::INFINITY) {
             return Err(e);
         }

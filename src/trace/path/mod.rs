@@ -41,13 +41,51 @@ use reach::*;
 pub use reach::{cannot_reach, crossing};
 use stack::*;
 
-/// Reflect or refract.
+/// Reflect, refract or tunnel.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
 pub enum EventKind {
     /// Reflected at the surface.
     Reflect,
     /// Refracted (transmitted) through it.
     Refract,
+    /// Tunnelled through the layer behind it (frustrated total reflection, docs/PHYSICS.md §5):
+    /// the surface is lit beyond its critical angle, and the evanescent field in the layer
+    /// behind it (`crate::scene::Scene::layer_behind`) launches a wave from the layer's far face
+    /// into the medium beyond. The event's point is the hit point on the lit face; the next
+    /// segment starts at the foot of the normal through it on the far face ([`tunnel_exit`]),
+    /// with no optical path in between (all of the layer's phase is in its t_layer).
+    Tunnel,
+}
+
+impl EventKind {
+    /// The [`interaction::Child`] a path with this event follows.
+    pub fn child(self) -> interaction::Child {
+        match self {
+            EventKind::Reflect => interaction::Child::Reflected,
+            EventKind::Refract => interaction::Child::Refracted,
+            EventKind::Tunnel => interaction::Child::Tunnelled,
+        }
+    }
+}
+
+/// Where a wave tunnelled at surface `surface` (hit at `x`, arriving along `d`) leaves the layer
+/// behind it: the foot of the normal through `x` on the layer's far face (its partner,
+/// [`crate::optics::interaction::Layer`]), with that partner's index; `None` without a layer.
+/// The path solver and the carried rays both call this, so they start the tunnelled segment
+/// at the same point, bit for bit.
+pub(crate) fn tunnel_exit(
+    scene: &Scene,
+    optics: &SceneOptics,
+    surface: usize,
+    x: DVec3,
+    d: DVec3,
+) -> Option<(DVec3, usize)> {
+    let normal = scene.surfaces[surface].plane.normal;
+    let layer = optics.layers[surface][usize::from(d.dot(normal) >= 0.0)]?;
+    Some((
+        scene.surfaces[layer.partner].plane.project(x),
+        layer.partner,
+    ))
 }
 
 /// One surface event of a sequence.
@@ -69,6 +107,7 @@ pub fn sequence_label<'a>(seq: impl IntoIterator<Item = &'a Event>) -> String {
         .map(|e| match e.kind {
             EventKind::Reflect => format!("R{}", e.surface),
             EventKind::Refract => format!("T{}", e.surface),
+            EventKind::Tunnel => format!("U{}", e.surface),
         })
         .collect();
     if labels.is_empty() {
@@ -132,6 +171,21 @@ pub enum PathError {
     /// The end point is behind the last segment's start.
     #[error("the end point lies behind the last segment")]
     Behind,
+    /// A tunnel event where no tunnelled wave exists: the face is not lit beyond its critical
+    /// angle, has no layer behind it, or the medium beyond the layer is beyond its own critical
+    /// angle too.
+    #[error("no tunnelled wave at event {event}")]
+    NoTunnel {
+        /// The event's position in the sequence.
+        event: usize,
+    },
+    /// A tunnel event on a path other than a plane wave into the far field: the point-to-point
+    /// solver does not yet solve through a layer's jump (docs/PHYSICS.md §5).
+    #[error("a tunnelled wave (event {event}) is traced only for a plane wave into the far field")]
+    TunnelNotSolved {
+        /// The event's position in the sequence.
+        event: usize,
+    },
     /// The exit direction is not the far-field direction asked for.
     #[error("the exit direction does not match the far-field direction")]
     DirectionMismatch,
@@ -296,7 +350,7 @@ impl Geometry {
 fn unfolded_target(scene: &Scene, seq: &[Event], p: DVec3) -> DVec3 {
     seq.iter().rev().fold(p, |x, ev| match ev.kind {
         EventKind::Reflect => scene.surfaces[ev.surface].plane.mirror_point(x),
-        EventKind::Refract => x,
+        EventKind::Refract | EventKind::Tunnel => x,
     })
 }
 
@@ -451,6 +505,25 @@ pub fn solve(
             reference_point, ..
         } => reference_point,
     };
+    // A tunnelled wave: only a plane wave into the far field (one event at a time, as the
+    // far-field walk traces it).
+    if let Some(event) = seq.iter().position(|e| e.kind == EventKind::Tunnel) {
+        let (
+            Emitter::PlaneWave {
+                direction,
+                reference_point,
+            },
+            Target::Direction { .. },
+        ) = (emitter, target)
+        else {
+            return Err(PathError::TunnelNotSolved { event });
+        };
+        let mut paths = FarFieldPaths::new(scene, optics, direction, reference_point);
+        for ev in seq {
+            paths.advance(*ev)?;
+        }
+        return paths.path(&target);
+    }
     // Plane wave into the far field: every launch is equivalent; trace from the reference point.
     if let (
         Emitter::PlaneWave {
@@ -479,7 +552,7 @@ pub fn solve(
             // Unfold the direction: mirror it through every reflection plane in reverse order.
             let d = seq.iter().rev().fold(dir, |d, ev| match ev.kind {
                 EventKind::Reflect => fresnel::reflect(d, scene.surfaces[ev.surface].plane.normal),
-                EventKind::Refract => d,
+                EventKind::Refract | EventKind::Tunnel => d,
             });
             (d, anchor)
         }

@@ -23,6 +23,10 @@ pub fn cannot_reach(scene: &Scene, emitter: Emitter, seq: &[Event], target: &Tar
     let (Emitter::Point { position: source }, Target::Point(p)) = (emitter, *target) else {
         return false;
     };
+    // A tunnel jumps across its layer: left to the solver (which names why it fails).
+    if seq.iter().any(|e| e.kind == EventKind::Tunnel) {
+        return false;
+    }
     match seq.first() {
         None => straight_segment_stopped(scene, source, p),
         Some(first) => stack_cannot_reach(scene, seq, source, p, first.surface),

@@ -175,6 +175,46 @@ pub(super) fn step_planes_carried(
                 p2: (normal, p2),
             }
         }
+        EventKind::Tunnel => {
+            tunnel_step(optics, k, ev, (d, normal), (n1, n2), (q2_i, q2_t, p2), x)?
+        }
+    })
+}
+
+/// The [`PlaneStep`] of a tunnel event at `x` (frustrated total reflection, docs/PHYSICS.md §5):
+/// the direction refracted from n1 into the index beyond the layer, from Snell's invariant
+/// ((n3 cos θ3)² = (n1 cos θ1)² + n3² − n1², as `interaction` forms it); the point stays the hit
+/// point on the lit face (`FarFieldPaths` starts the next segment on the far face,
+/// [`tunnel_exit`]). [`PathError::NoTunnel`] where no tunnelled wave exists.
+fn tunnel_step(
+    optics: &SceneOptics,
+    k: usize,
+    ev: Event,
+    (d, normal): (DVec3, DVec3),
+    (n1, n2): (f64, f64),
+    (q2_i, q2_t, p2): (DoubleDouble, DoubleDouble, DoubleDouble),
+    x: DVec3,
+) -> Result<PlaneStep, PathError> {
+    let no = PathError::NoTunnel { event: k };
+    let layer = optics.layers[ev.surface][usize::from(d.dot(normal) >= 0.0)].ok_or(no.clone())?;
+    let dielectric = matches!(
+        optics.surfaces[ev.surface],
+        Some(SurfaceOptics::Dielectric { .. })
+    );
+    let n3 = layer.n_beyond;
+    let q2_3 = q2_i + two_prod(n3, n3) - two_prod(n1, n1);
+    if !dielectric || n1 == n2 || q2_t.hi >= 0.0 || q2_3.hi <= 0.0 {
+        return Err(no);
+    }
+    Ok(PlaneStep {
+        x,
+        d: interaction::snell_direction(d, normal, (n1, n3), q2_3.sqrt().to_f64() / n3),
+        n: n3,
+        denser: false,
+        tir: false,
+        refraction_factor: q2_3.sqrt().to_f64() / q2_i.sqrt().to_f64(),
+        q2: (normal, q2_3),
+        p2: (normal, p2),
     })
 }
 
@@ -417,6 +457,7 @@ pub(super) fn parallel_stack_launch(
             (EventKind::Reflect, _) => up = -up,
             (EventKind::Refract, SurfaceOptics::IdealMirror) => return None,
             (EventKind::Refract, _) => n = n2,
+            (EventKind::Tunnel, _) => return None,
         }
     }
     let runs = &runs[..media];

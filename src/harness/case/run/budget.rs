@@ -61,6 +61,15 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
         crate::harness::analytic::plate::Pol::S,
         crate::harness::analytic::plate::Pol::P,
     ];
+    // Beyond the critical angle of the film's top face the film carries no propagating wave:
+    // the traced reflection (r_layer) and tunnelled wave (t_layer) are the whole Airy sum
+    // (docs/PHYSICS.md §5), with no orders inside the film and no tail to bound or close.
+    if f.frustration(cos1, lambda_m).is_some() {
+        return Ok(Budget {
+            internal: 3,
+            closed: false,
+        });
+    }
     // The most orders the cap allows (2 N + 1 internal reflections); the bound decreases with
     // N, so the bound needs more than the cap exactly when it is not met at N.
     let cap = crate::harness::case::load::limits::MAX_INTERNAL_REFLECTIONS;

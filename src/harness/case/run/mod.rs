@@ -459,6 +459,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
                             let verb = match e.kind {
                                 EventKind::Reflect => "reflected by",
                                 EventKind::Refract => "through",
+                                EventKind::Tunnel => "tunnelled through the layer behind",
                             };
                             format!("{verb} {:?}", built.scene.surfaces[e.surface].name)
                         })
