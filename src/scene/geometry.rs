@@ -58,6 +58,16 @@ impl Plane {
     /// a tilted plane is resolved even 1 cm from the anchor (where the f64 dot product rounds at
     /// ~1e-18 m).
     pub(crate) fn signed_distance_precise(&self, x: DVec3) -> f64 {
+        self.signed_distance_dd(x).to_f64()
+    }
+
+    /// [`Plane::signed_distance_precise`] before its final rounding, in double-double: two
+    /// planes held from one anchor along one normal (a plate's faces) keep their exact height
+    /// difference in the difference of their distances from any point.
+    pub(crate) fn signed_distance_dd(
+        &self,
+        x: DVec3,
+    ) -> crate::optics::double_double::DoubleDouble {
         use crate::optics::double_double::{DoubleDouble, two_diff};
         let d = [
             two_diff(x.x, self.anchor.x),
@@ -75,7 +85,7 @@ impl Plane {
         } else {
             dot / norm2.sqrt()
         };
-        (dot - DoubleDouble::from(self.height_m)).to_f64()
+        dot - DoubleDouble::from(self.height_m)
     }
 
     /// The first-order change of an optical path when its point `x` on this plane, rounded off

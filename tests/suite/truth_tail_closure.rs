@@ -35,22 +35,47 @@ fn grazing_airy_scenes_are_judged_not_refused() {
     assert!(bad.is_empty(), "{bad:#?}");
 }
 
-/// What is left (seed 1, count 300: scenes 6, 16, 55, 77, 80, 117, 119, 156, 163, 166, 203,
-/// 217, 285): still refused with the tail's reason, never passed or failed on a wrong beam.
-/// Several are beyond the film's critical angle (an evanescent film: frustrated total
-/// reflection, no traced order through it); the rest are not yet diagnosed.
+/// Scenes of `fringe fuzz --family airy --seed 1` (count 300) observed on the reflected side
+/// beyond the critical angle of the film's top face, refused as "the tail cannot be closed
+/// exactly: the deepest traced sequence (1 events) …". Diagnosis: there the tracer reflects at
+/// the top face with the film's frustrated coefficient (the whole Airy sum of the evanescent
+/// film, `fresnel::frustrated_layer`) and no order enters the film, so no term is left out;
+/// but the budget (`case::run::budget`) asked the tail bound, which does not decay (|r| = 1
+/// inside), and sent the point to the closure, which found no round trip to close. The budget
+/// now asks for no tail there. Plain, rotated, translated, with and without a substrate, films
+/// 0.14 pm … 1.2 µm, in ambient n = 0.016 … 3.8.
+const FRUSTRATED_FILM_SCENES: [usize; 10] = [6, 16, 55, 80, 119, 156, 163, 166, 217, 285];
+
+/// Those scenes are judged, not refused, and pass the gate against the `airy` closed form.
 #[test]
-fn the_remaining_grazing_airy_scenes_are_refused_with_their_reason() {
-    for index in [6, 156, 163, 217] {
+fn frustrated_film_scenes_are_judged_not_refused() {
+    let mut bad = Vec::new();
+    for index in FRUSTRATED_FILM_SCENES {
         let scene = fuzz::scene(Family::Airy, 1, index, None);
         let case = scene.case.expect("a generated case");
-        match fuzz::judge(&case, Path::new("rest.json")) {
-            Verdict::Pass { .. } => {}
-            Verdict::Refused { reason } => assert!(
-                reason.contains("$.trace.airy_tail_epsilon") || reason.contains("$.references"),
-                "scene {index}: {reason}"
-            ),
-            v => panic!("scene {index}: {v:?}"),
+        let verdict = fuzz::judge(&case, Path::new(&format!("frustrated_{index}.json")));
+        if !matches!(verdict, Verdict::Pass { .. }) {
+            bad.push(format!("scene {index} {:?}: {verdict:?}", scene.tags));
         }
     }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+/// The traced reflectances of the unpolarized ones (case files `tests/fuzz_found/
+/// fuzz_airy_s1_<index>.json`, the generator's own output) against 50-digit Airy sums from
+/// their binary64 inputs (`tools/frustrated_film_found_mpmath.py`,
+/// tests/data/frustrated_film_mpmath.csv): within 1e-12 of each profile's largest value.
+#[test]
+fn frustrated_film_reflectances_hold_against_50_digits() {
+    let truth = crate::support::mpmath_profiles("frustrated_film_mpmath.csv");
+    assert_eq!(truth.len(), 4);
+    let mut bad = Vec::new();
+    for (name, values) in &truth {
+        let err = crate::support::traced_error(name, values);
+        println!("{name}: traced vs 50 digits {err:e}");
+        if err.is_nan() || err > 1e-12 {
+            bad.push(format!("{name}: err {err:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
 }

@@ -407,31 +407,36 @@ pub(super) fn parallel_stack_launch(
     let target_along = v[0].mul_f64(nu.x) + v[1].mul_f64(nu.y) + v[2].mul_f64(nu.z);
     // Heights along ν relative to the source (k = 0), of event plane k (1..=len) and the
     // target: a plane's is minus the source's signed distance from it, in double-double from
-    // the plane as held (anchor and height, `Plane::signed_distance_precise`).
+    // the plane as held (anchor and height, `Plane::signed_distance_dd`), and kept in
+    // double-double until the segment heights are formed: a plate's faces, held from one
+    // anchor, then differ by their exact thickness. Rounded to f64 first, two distances of
+    // ~0.65 m lost 1.6e-7 of a 0.69 nm plate's thickness, the plate's lateral run (tan θt ~
+    // 6e8) as much, and the launch missed by 4e-8 m (`fringe fuzz --family two_beam_plate
+    // --seed 1`, scene 239).
     let z = |k: usize| match k {
-        0 => 0.0,
+        0 => DoubleDouble::ZERO,
         k if k <= seq.len() => {
             let plane = &scene.surfaces[seq[k - 1].surface].plane;
-            let side = if plane.normal.dot(nu) > 0.0 {
-                1.0
+            let distance = plane.signed_distance_dd(source);
+            if plane.normal.dot(nu) > 0.0 {
+                -distance
             } else {
-                -1.0
-            };
-            -side * plane.signed_distance_precise(source)
+                distance
+            }
         }
-        _ => target_along.to_f64(),
+        _ => target_along,
     };
     // Walk the segments: the direction along ν (it flips at reflections only) and the index
     // (it changes at refractions only), exactly as `trace_planes` finds them for any launch;
     // anything it would reject is left to the general solver and its error.
     let n0 = optics.ambient_index;
-    let first_up = (z(1) - z(0)).signum();
+    let first_up = (z(1) - z(0)).to_f64().signum();
     let (mut up, mut n) = (first_up, n0);
     // Total height per index (one entry per medium; more media than this is left to Newton).
     let mut runs = [(0.0, 0.0); 4];
     let mut media = 0;
     for k in 0..=seq.len() {
-        let dz = z(k + 1) - z(k);
+        let dz = (z(k + 1) - z(k)).to_f64();
         if dz == 0.0 || dz.signum() != up {
             return None;
         }
