@@ -143,3 +143,83 @@ fn the_fuzz_band_passes_the_scene_and_still_catches_an_injected_error() {
         d.amplitude
     );
 }
+
+// A grazing two-beam plate whose lateral distance is not an f64 (issue #12, `fringe fuzz
+// --family two_beam_plate --count 300 --seed 1`, scene 4, shrunk: a 10 cm plate of n = 1.5 in an
+// ambient of n = 2, 200 nm, the source 2.5 m off the origin, probes 125 m and 250 m away).
+// Expected values: 50 digits of the case's own binary64 numbers, the lateral distance p − s
+// exact (`tools/two_beam_plate_held_mpmath.py` → `tests/data/two_beam_plate_held_mpmath.csv`).
+// Near grazing the path difference moves by n1 (sin θ1 − sin θexit) ≈ 0.5 m per metre of x, so
+// the f64 difference 252.51188643223688 − 2.51188643150958 (off by up to 2.8e-14 m) turned the
+// phase by ~4e-7 rad: the reference was 1.7e-9 off while the tracer was exact.
+
+const GRAZING: &str = "fuzz_two_beam_plate_s1_4";
+
+fn grazing_file() -> PathBuf {
+    PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/fuzz_found/{GRAZING}.json"))
+}
+
+fn grazing_truth() -> Vec<f64> {
+    crate::support::mpmath_profiles("two_beam_plate_held_mpmath.csv")[GRAZING].clone()
+}
+
+/// Tracer and closed form both equal 50 digits of the scene as written, to 1e-14 of the profile
+/// (the closed form with heights and lateral distance in double-double, `HeldPoints`; it was
+/// 1.7e-9 off at 250 m when it took the f64 difference of the coordinates).
+#[test]
+fn a_grazing_plate_far_from_its_source_is_exact_in_tracer_and_reference() {
+    let truth = grazing_truth();
+    let text = std::fs::read_to_string(grazing_file()).unwrap();
+    let r = run::run_with(
+        &load::parse(&grazing_file(), &text).expect("a valid case"),
+        false,
+    )
+    .unwrap();
+    let m = &r.metrics[0];
+    let s = scale(&truth);
+    for (i, ((t, a), e)) in m.traced[&Fidelity::Vector]
+        .iter()
+        .zip(&m.analytic)
+        .zip(&truth)
+        .enumerate()
+    {
+        let (dt, da) = ((t - e).abs() / s, (a - e).abs() / s);
+        println!("point {i}: traced {t:e}, closed form {a:e}, 50 digits {e:e}: {dt:.1e}, {da:.1e}");
+        assert!(
+            dt <= 1e-14,
+            "point {i}: traced {t:e} vs 50 digits {e:e}: {dt:e}"
+        );
+        assert!(
+            da <= 1e-14,
+            "point {i}: closed form {a:e} vs 50 digits {e:e}: {da:e}"
+        );
+    }
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let v = fuzz::judge(&value, &grazing_file());
+    assert!(matches!(v, Verdict::Pass { .. }), "{v:?}");
+}
+
+/// The same closed form fed the f64-rounded lateral distance of the far probe is off 50 digits by
+/// more than the case's 1e-9 (what the gate reported before): the test above can fail, and the
+/// double-double lateral distance is what makes the reference exact.
+#[test]
+fn the_rounded_lateral_distance_alone_puts_the_grazing_reference_beyond_tolerance() {
+    use fringe::harness::analytic::plate::TwoBeamPlate;
+    let truth = grazing_truth();
+    let (hs, ho) = (0.7272943720090697, 1.4545887440181393);
+    let plate = TwoBeamPlate {
+        n1: 2.0,
+        n2: 1.5,
+        thickness_m: 100000.0 * 1e-6,
+        h_src_m: hs,
+        h_obs_m: ho,
+    };
+    let x = 252.51188643223688 - 2.51188643150958; // rounded to f64
+    let rounded = plate.intensity_unpolarized(x, 200.0 * 1e-9);
+    let e = (rounded - truth[1]).abs() / scale(&truth);
+    println!(
+        "rounded x {x:e}: {rounded:e} vs 50 digits {:e}: {e:e}",
+        truth[1]
+    );
+    assert!(e > 1e-9, "{e:e}");
+}
