@@ -278,7 +278,7 @@ struct Split {
 
 /// Advances `parent` to the hit point and splits its field.
 fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
-    parent.advance_to(hit.point);
+    parent.advance_to_event(hit.point);
     // Step 1: the coefficients and the s/p frame of the incident ray.
     let encounter = Encounter::new(parent.dir, parent.index, parent.normal_q2, hit, model);
     let s = encounter.s_for(parent.x);
@@ -487,7 +487,7 @@ pub fn interact_along_shared(
     model: CoefficientModel,
     reflect: bool,
 ) -> bool {
-    lead.advance_to(hit.point);
+    lead.advance_to_event(hit.point);
     let encounter = Encounter::new(lead.dir, lead.index, lead.normal_q2, hit, model);
     let Some(b) = followed(&encounter, hit, reflect) else {
         return false;

@@ -223,3 +223,49 @@ fn the_rounded_lateral_distance_alone_puts_the_grazing_reference_beyond_toleranc
     );
     assert!(e > 1e-9, "{e:e}");
 }
+
+// A 0.1 nm film moved away from the origin (issue #12, `fringe fuzz --family airy --count 1000
+// --seed 1`, scene 499, shrunk: n = 1.5 in air, 200 nm, s, reflected at 0° and 1°, 100 m out).
+// The tracer measured the segments between event points as |b − a|, which adds a point's f64
+// rounding δ (~7e-15 m at 100 m) to second order, |δ|²/(2L): with L ~ 1e-10 m inside the film
+// that is 5e-19 m per round trip, and R was 3.7e-9 off 50 digits at 100 m, 4e-8 at 1000 m.
+// Expected values: `tools/airy_translated_mpmath.py` → `tests/data/airy_translated_mpmath.csv`.
+
+/// The traced R of the film equals 50 digits to 1e-13 of the profile wherever the film is (0 m
+/// to 1000 m from the origin), and the gate passes the found scene (segments that end on an event
+/// are measured along the ray, `Ray::advance_to_event`, `path::event_segment_length`).
+#[test]
+fn a_sub_nanometre_film_far_from_the_origin_reflects_as_at_the_origin() {
+    const FILM: &str = "fuzz_airy_s1_499";
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/fuzz_found/{FILM}.json"));
+    let text = std::fs::read_to_string(&path).unwrap();
+    let truth = crate::support::mpmath_profiles("airy_translated_mpmath.csv")[FILM].clone();
+    let s = scale(&truth);
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    for y in [0.0, 1.0, 10.0, 100.0, 1000.0] {
+        let mut moved = value.clone();
+        moved["scene"]["surfaces"][0]["plate"]["top_point_m"] = serde_json::json!([0.0, y, 0.0]);
+        moved["scene"]["sources"][0]["emitter"]["plane_wave"]["reference_point_m"] =
+            serde_json::json!([0.0, y, 1.0]);
+        let r = run_text_at(&path, &moved.to_string());
+        for (i, (t, e)) in r.metrics[0].traced[&Fidelity::Vector]
+            .iter()
+            .zip(&truth)
+            .enumerate()
+        {
+            let dev = (t - e).abs() / s;
+            println!("{y} m, point {i}: traced {t:e}, 50 digits {e:e}: {dev:.1e}");
+            assert!(
+                dev <= 1e-13,
+                "{y} m, point {i}: traced {t:e} vs 50 digits {e:e}: {dev:e}"
+            );
+        }
+    }
+    let v = fuzz::judge(&value, &path);
+    assert!(matches!(v, Verdict::Pass { .. }), "{v:?}");
+}
+
+fn run_text_at(path: &std::path::Path, text: &str) -> run::CaseResult {
+    run::run_with(&load::parse(path, text).expect("a valid case"), false).unwrap()
+}
