@@ -335,7 +335,7 @@ struct Split {
 
 /// Advances `parent` to the hit point and splits its field.
 fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split {
-    parent.advance_to(hit.point);
+    parent.advance_to_event(hit.point);
     // Step 1: the coefficients and the s/p frame of the incident ray.
     let encounter = Encounter::new(parent.dir, parent.index, parent.normal_q2, hit, model);
     let s = encounter.s_for(parent.x);
@@ -569,7 +569,7 @@ pub fn interact_along_shared(
     model: CoefficientModel,
     which: impl Into<Child>,
 ) -> bool {
-    lead.advance_to(hit.point);
+    lead.advance_to_event(hit.point);
     let encounter = Encounter::new(lead.dir, lead.index, lead.normal_q2, hit, model);
     let Some(b) = followed(&encounter, hit, which.into()) else {
         return false;

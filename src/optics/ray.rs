@@ -8,7 +8,7 @@
 //! *differences* can be formed to ~1e-30 m before any phase is taken (docs/PHYSICS.md §1). Intensity = |J_x|² + |J_y|² =
 //! trace of the coherence matrix.
 
-use crate::optics::double_double::{DoubleDouble, segment_length};
+use crate::optics::double_double::{DoubleDouble, projection, segment_length};
 use crate::optics::trail::Trail;
 use glam::DVec3;
 use num_complex::Complex64;
@@ -211,6 +211,23 @@ impl Ray {
     /// Phase in cycles, Op/λ0 (the path phase divided by 2π), of the rounded path.
     pub fn phase_cycles(&self) -> f64 {
         self.optical_path_m() / self.wavelength_m
+    }
+
+    /// [`Ray::advance_to`] an event point: `point` is where the ray meets a surface, rounded
+    /// to f64, and L is measured along the ray's direction, d·(point − origin)/|d|
+    /// ([`projection`]), as the path solver measures a segment that ends on an event
+    /// (`trace::path::event_segment_length`, which says why: |point − origin| adds the
+    /// point's rounding to second order, 5e-19 m per round trip in a 0.1 nm film 100 m from
+    /// the origin).
+    #[inline(always)]
+    pub(crate) fn advance_to_event(&mut self, point: DVec3) {
+        let length = projection(self.dir, point, self.origin);
+        self.optical_path += length.mul_f64(self.index);
+        self.ledger.entries.push(LedgerEntry::Path {
+            index: self.index,
+            length_m: length.to_f64(),
+        });
+        self.origin = point;
     }
 
     /// Move the ray's origin to `point` along its direction, adding n·L to the optical path

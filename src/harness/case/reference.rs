@@ -160,6 +160,30 @@ fn plate_thickness(scene: &crate::scene::Scene, top: usize, bottom: usize) -> f6
         .unwrap_or_else(|| (t.point - b.point).dot(t.normal))
 }
 
+/// The source's and the probe's heights above `top` and their lateral distance along it, from
+/// the f64 coordinates without rounding (docs/PHYSICS.md §5, "Plate, two beams"): exact
+/// coordinate differences, the unit normal N/|N| of the held f64 normal (as
+/// [`crate::scene::geometry::Plane::signed_distance_precise`] measures) and products and sums
+/// in double-double, the lateral distance as the length of the part of p − s perpendicular to
+/// N/|N| (no cancellation when x is small).
+fn held_points(
+    top: &crate::scene::geometry::Plane,
+    s: DVec3,
+    p: DVec3,
+) -> analytic::plate::HeldPoints {
+    use analytic::precise;
+    let n = precise::unit(top.normal);
+    let height = |x: DVec3| precise::dot2(&precise::diff(x, top.anchor), &n) - top.height_m;
+    let v = precise::diff(p, s);
+    let along = precise::dot2(&v, &n);
+    let lateral = [0, 1, 2].map(|i| v[i] - along * n[i]);
+    analytic::plate::HeldPoints {
+        x_m: precise::length(&lateral),
+        h_src_m: height(s),
+        h_obs_m: height(p),
+    }
+}
+
 /// Fraction of a source's intensity polarized along `axis` (1, 0 or 1/2), if its channels are
 /// linear and along and perpendicular to `axis`; `None` for basis-free unpolarized light
 /// (docs/PHYSICS.md §3), which has no such split.
@@ -334,12 +358,16 @@ pub fn value(
                     return Err("two_beam_plate needs an unpolarized source".into());
                 }
             };
+            // Heights and lateral distance of the f64 scene as written, in double-double
+            // (`held_points`): an f64 x of 250 m is off by up to 2.8e-14 m, which near grazing
+            // moves the phase by 4e-7 rad at 200 nm (`TwoBeamPlate::intensity_unpolarized_held`).
+            let held = held_points(plane, s, p);
             let t = analytic::plate::TwoBeamPlate {
                 n1,
                 n2: glass.index(lambda_m).map_err(|e| e.to_string())?,
                 thickness_m: plate_thickness(scene, top, bottom),
-                h_src_m: plane.signed_distance(s),
-                h_obs_m: plane.signed_distance(p),
+                h_src_m: held.h_src_m.hi(),
+                h_obs_m: held.h_obs_m.hi(),
             };
             // Beyond the critical angle of the top face (an ambient denser than the plate) the
             // top beam is totally reflected and the beam through the plate still exists,
@@ -350,13 +378,7 @@ pub fn value(
             // tracer applies it at the face (`fresnel::frustrated_layer`). The beam through the
             // plate is solved for tan θt in double-double however steeply it runs inside
             // (`TwoBeamPlate`, docs/PHYSICS.md §5).
-            let x = horiz.length();
-            Ok(src.intensity
-                * if basis_free {
-                    t.intensity_unpolarized_basis_free(x, lambda_m)
-                } else {
-                    t.intensity_unpolarized(x, lambda_m)
-                })
+            Ok(src.intensity * t.intensity_unpolarized_held(&held, lambda_m, basis_free))
         }
         ReferenceModel::Airy {
             film,

@@ -159,8 +159,9 @@ impl<'a> FarFieldPaths<'a> {
         next.q2 = Some(step.q2);
         next.denser_reflections += usize::from(step.denser);
         next.has_tir |= step.tir;
-        // The finite segment k, from the last point to this event, as `finish` checks it.
-        let length = segment_length(o, step.x);
+        // The finite segment k, from the last point to this event, as `finish` measures it:
+        // along the ray's own direction (`path::event_segment_length`).
+        let length = super::event_segment_length(o, step.x, d);
         next.optical_path += length.mul_f64(n);
         // The event's point back onto its plane (first order; as `finish` adds it).
         next.optical_path += DoubleDouble::from(

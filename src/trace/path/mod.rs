@@ -817,9 +817,13 @@ pub fn solve(
         // differences to the source's own point; the start corrects the first segment to it.
         Emitter::Line { point, axis } if g.points.len() > 1 => {
             let n0 = g.indices[0];
-            (distance_to_line(point, axis.normalize(), g.points[1])
-                - segment_length(g.points[0], g.points[1]))
-            .mul_f64(n0)
+            // The first segment as `finish` measures it (along the ray when it ends on an event).
+            let first = if seq.is_empty() {
+                segment_length(g.points[0], g.points[1])
+            } else {
+                event_segment_length(g.points[0], g.points[1], g.dirs[0])
+            };
+            (distance_to_line(point, axis.normalize(), g.points[1]) - first).mul_f64(n0)
         }
         _ => DoubleDouble::ZERO,
     };
@@ -835,6 +839,20 @@ pub fn solve(
         path.launch_normal_q2 = launch_q2;
     }
     Ok(path)
+}
+
+/// The length (m, double-double) of a segment from `a` that ends on an event point `b`, the
+/// point where the ray from `a` along `d` meets the event's plane, rounded to f64: measured along
+/// `d` as d·(b − a)/|d| ([`projection`]), not as |b − a|. A rounding δ of `b` moves the two
+/// measures alike to first order (δ·d, which the next segment's −δ·d′ cancels along the plane,
+/// and [`crate::scene::geometry::Plane::off_plane_path_correction`] across it), but |b − a| adds
+/// the second-order |δ⊥|²/(2L), which is no longer small when the segment is as short as a film
+/// is thin: a 0.1 nm film 100 m from the origin (δ ~ 7e-15 m, L ~ 1e-10 m) gained 5e-19 m per
+/// round trip, 3.7e-9 of its R off 50 digits (`fringe fuzz --family airy --count 1000 --seed 1`,
+/// scene 499; docs/PHYSICS.md §8).
+#[inline]
+pub(crate) fn event_segment_length(a: DVec3, b: DVec3, d: DVec3) -> DoubleDouble {
+    projection(d, b, a)
 }
 
 /// Validate extents and blockers and assemble the [`SolvedPath`]; `start` is the optical path
@@ -866,7 +884,11 @@ fn finish(
     for i in 0..n_seg {
         let a = g.points[i];
         let len = if i + 1 < g.points.len() {
-            let len = segment_length(a, g.points[i + 1]);
+            let len = if i < seq.len() {
+                event_segment_length(a, g.points[i + 1], g.dirs[i])
+            } else {
+                segment_length(a, g.points[i + 1])
+            };
             optical_path += len.mul_f64(g.indices[i]);
             // Event i's point back onto its plane (first order; as `FarFieldPaths` adds it).
             if let Some(ev) = seq.get(i) {
