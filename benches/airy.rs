@@ -15,7 +15,8 @@
 //! * `airy/spectrum/...`: a traced Airy spectrum, 401 wavelengths (400–800 nm) of a plane wave
 //!   on a free-standing plate (n = 1.7, 3.217 µm, 35°, unpolarized), orders from the tail
 //!   bound ε = 1e-12 at the middle wavelength, `vector`; throughput in spectral points.
-//!   `traced_once`: one trace, then the 401-λ phasor batch of each ray (`Beats::intensities`;
+//!   `traced_once`: one trace, then `Beats::intensities` (one 401-λ phasor batch per distinct
+//!   ray phase, shared by the rays of the source's channels along one order;
 //!   the test `beats::spectrum_traced_once_matches_airy_and_per_wavelength_traces` checks it
 //!   against Airy to 1e-12). `per_wavelength`: a trace at every wavelength (what a dispersive
 //!   plate needs), for the constant plate and for N-BK7 (Sellmeier). `traced_once_2t`: 16
@@ -80,11 +81,12 @@ fn bench(c: &mut Criterion) {
             .max()
             .unwrap();
         let st = settings(2 * orders + 1, true);
-        // Orders 0..=N + 1 arrive (m = 2N + 1 admits one more), two channels each.
+        // Orders 0..=N + 1 arrive (m = 2N + 1 admits one more), one ray per channel each (an
+        // unpolarized source has three dipole channels).
         let arrived = point(&scene, &target, &st);
         assert_eq!(
             arrived,
-            2 * (orders + 2),
+            scene.sources[0].channels().len() * (orders + 2),
             "every order within the budget arrives"
         );
         group.throughput(Throughput::Elements(orders as u64));

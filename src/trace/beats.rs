@@ -57,10 +57,18 @@ pub struct Beats {
     cycles: Vec<f64>,
     phasors: Vec<Complex64>,
     /// Scratch of [`Beats::intensities`]: coherence ids in order of first appearance, and
-    /// each group's field (re, im of x, y, z) at every wavelength, group by group.
+    /// each group's field over one block of wavelengths as six rows (re, im of x, y, z).
     group_ids: Vec<u64>,
-    group_fields: Vec<[f64; 6]>,
+    group_fields: Vec<f64>,
+    /// Distinct (Δs, extra phase) pairs of the rays, and each coherent ray's phase class,
+    /// group and field.
+    phase_keys: Vec<(f64, f64)>,
+    ray_slots: Vec<(usize, usize, Field3)>,
 }
+
+/// Wavelengths per block of [`Beats::intensities`] (accumulator form): 64 wavelengths of a
+/// group's field sums are 3 KiB, so several groups stay in L1.
+const LAMBDA_BLOCK: usize = 64;
 
 /// The `vector` rays of a point's arrivals, traced at one wavelength, as spectral
 /// contributions for any wavelength of a non-dispersive scene: Δs is each optical path minus
@@ -166,9 +174,10 @@ impl Beats {
 
     /// [`Beats::intensity`] at every wavelength of `lambdas_m`, into `out`: a spectrum of a
     /// point whose rays were traced once (non-dispersive media: the same paths, fields and
-    /// order structure at every λ, only the phases Δs/λ change). Term by term (paired form)
-    /// or ray by ray (accumulator form), each term's or ray's phasors over the whole grid are
-    /// one batch ([`phasors_from_cycles`]) added into every wavelength's sum. The accumulator
+    /// order structure at every λ, only the phases Δs/λ change). Term by term (paired form:
+    /// each term's phasors over the whole grid are one batch, [`phasors_from_cycles`]) or by
+    /// blocks of wavelengths (accumulator form: one phasor batch per distinct ray phase and
+    /// block, shared by the rays of that phase). The accumulator
     /// form sums each coherence group's field in ray order without compensation: for N rays
     /// of fields |E_k| the rounding is ~N u Σ|E_k|² (u = 2^-53), e.g. < 1e-14 for an Airy plate
     /// of 50 orders, where [`Beats::intensity`] compensates.
@@ -190,8 +199,36 @@ impl Beats {
             }
             return;
         }
+        #[cfg(target_arch = "x86_64")]
+        if std::arch::is_x86_feature_detected!("avx2") {
+            // SAFETY: `rays_spectrum_avx2` only requires AVX2, which the running CPU has
+            // (checked just above). Measured reason: 4-lane loops (README measured table,
+            // `airy/spectrum`); no FMA is enabled, so both copies give the same bits.
+            unsafe { self.rays_spectrum_avx2(lambdas_m, out) };
+            return;
+        }
+        self.rays_spectrum(lambdas_m, out);
+    }
+
+    /// [`Beats::rays_spectrum`] compiled for AVX2.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn rays_spectrum_avx2(&mut self, lambdas_m: &[f64], out: &mut [f64]) {
+        self.rays_spectrum(lambdas_m, out);
+    }
+
+    /// The accumulator form of [`Beats::intensities`]: rays that share a phase (the same Δs
+    /// and extra phase, e.g. the s and p channels of one path, which are different coherence
+    /// groups) share one phasor batch, and the wavelengths are taken [`LAMBDA_BLOCK`] at a time
+    /// so that every group's running field sums stay in L1. A group's rays are summed in the
+    /// order of their phase classes' first appearance (ray order whenever a group's rays come
+    /// in that order, as for the s and p channels of an Airy plate's orders); the rounding
+    /// bound of [`Beats::intensities`] does not depend on the order.
+    #[inline(always)]
+    fn rays_spectrum(&mut self, lambdas_m: &[f64], out: &mut [f64]) {
         self.group_ids.clear();
-        self.group_fields.clear();
+        self.phase_keys.clear();
+        self.ray_slots.clear();
         let mut incoherent = 0.0;
         for r in &self.rays {
             if r.coherence_id == INCOHERENT {
@@ -202,29 +239,84 @@ impl Beats {
                 Some(g) => g,
                 None => {
                     self.group_ids.push(r.coherence_id);
-                    self.group_fields.resize(self.group_ids.len() * n, [0.0; 6]);
                     self.group_ids.len() - 1
                 }
             };
-            for (c, &l) in self.cycles.iter_mut().zip(lambdas_m) {
-                *c = r.delta_s_m / l + r.extra_cycles;
-            }
-            phasors_from_cycles(&self.cycles, &mut self.phasors);
-            let f = r.field;
-            for (e, p) in self.group_fields[g * n..(g + 1) * n]
-                .iter_mut()
-                .zip(&self.phasors)
-            {
-                for k in 0..3 {
-                    e[2 * k] += f[k].re * p.re - f[k].im * p.im;
-                    e[2 * k + 1] += f[k].re * p.im + f[k].im * p.re;
+            // Exact equality only: rays merge their phasors when their phases are the same
+            // numbers, never approximately.
+            let key = (r.delta_s_m, r.extra_cycles);
+            let p = match self.phase_keys.iter().position(|&k| k == key) {
+                Some(p) => p,
+                None => {
+                    self.phase_keys.push(key);
+                    self.phase_keys.len() - 1
                 }
-            }
+            };
+            self.ray_slots.push((p, g, r.field));
         }
-        out.fill(incoherent);
-        for fields in self.group_fields.chunks_exact(n.max(1)) {
-            for (o, e) in out.iter_mut().zip(fields) {
-                *o += e.iter().map(|v| v * v).sum::<f64>();
+        // Rays by phase class (first-appearance order); the stable sort keeps ray order within
+        // a class.
+        self.ray_slots.sort_by_key(|&(p, _, _)| p);
+        let groups = self.group_ids.len();
+        // Per group, six rows of LAMBDA_BLOCK: re and im of x, y, z at each wavelength of the
+        // block, so the loops over wavelengths run over contiguous rows.
+        let row = |g: usize, k: usize| (6 * g + k) * LAMBDA_BLOCK;
+        self.group_fields.resize(6 * groups * LAMBDA_BLOCK, 0.0);
+        self.cycles.resize(LAMBDA_BLOCK, 0.0);
+        self.phasors.resize(LAMBDA_BLOCK, Complex64::new(0.0, 0.0));
+        let mut cos = [0.0; LAMBDA_BLOCK];
+        let mut sin = [0.0; LAMBDA_BLOCK];
+        for (lambdas, out) in lambdas_m
+            .chunks(LAMBDA_BLOCK)
+            .zip(out.chunks_mut(LAMBDA_BLOCK))
+        {
+            let n = lambdas.len();
+            let fields = &mut self.group_fields[..6 * groups * LAMBDA_BLOCK];
+            fields.fill(0.0);
+            let mut start = 0;
+            while start < self.ray_slots.len() {
+                let p = self.ray_slots[start].0;
+                let end = start
+                    + self.ray_slots[start..]
+                        .iter()
+                        .take_while(|s| s.0 == p)
+                        .count();
+                let (ds, extra) = self.phase_keys[p];
+                for (c, &l) in self.cycles[..n].iter_mut().zip(lambdas) {
+                    *c = ds / l + extra;
+                }
+                phasors_from_cycles(&self.cycles[..n], &mut self.phasors[..n]);
+                for ((c, s), p) in cos[..n].iter_mut().zip(&mut sin[..n]).zip(&self.phasors) {
+                    (*c, *s) = (p.re, p.im);
+                }
+                for &(_, g, f) in &self.ray_slots[start..end] {
+                    for (k, fk) in f.iter().enumerate() {
+                        let (re, im) =
+                            fields[row(g, 2 * k)..row(g, 2 * k + 2)].split_at_mut(LAMBDA_BLOCK);
+                        for (((er, ei), &c), &s) in re[..n]
+                            .iter_mut()
+                            .zip(&mut im[..n])
+                            .zip(&cos[..n])
+                            .zip(&sin[..n])
+                        {
+                            *er += fk.re * c - fk.im * s;
+                            *ei += fk.re * s + fk.im * c;
+                        }
+                    }
+                }
+                start = end;
+            }
+            out.fill(incoherent);
+            for g in 0..groups {
+                let rows = &fields[row(g, 0)..row(g + 1, 0)];
+                for (i, o) in out.iter_mut().enumerate() {
+                    let mut e2 = 0.0;
+                    for k in 0..6 {
+                        let v = rows[k * LAMBDA_BLOCK + i];
+                        e2 += v * v;
+                    }
+                    *o += e2;
+                }
             }
         }
     }

@@ -1,0 +1,187 @@
+//! CPU-time rates of the work in `benches/accumulate.rs` and `benches/airy.rs`
+//! (`airy/spectrum`), for a machine shared with other builds, where criterion's wall times
+//! measure the other load: the CPU time of every thread of this process (from
+//! `/proc/self/task/*/schedstat`, nanoseconds on the CPU) around a fixed number of repetitions
+//! of the same work as the benches, next to the wall time.
+//!
+//! Run (Linux only):
+//!
+//! ```text
+//! cargo run --release --example cpu_rates -- accumulate   # 1 M contributions, 16 k points, 4 groups
+//! cargo run --release --example cpu_rates -- spectrum     # traced Airy spectrum, 401 λ
+//! ```
+//!
+//! Each line: what, repetitions, wall seconds, CPU seconds, and the rate per wall second and
+//! per CPU-second. The numpy baseline of the accumulation is `examples/accumulate_numpy.py`.
+
+#[path = "../tests/suite/support/airy_plate.rs"]
+#[allow(dead_code)] // `airy_plate` (n = 1.5) is not used here
+mod airy_plate;
+
+use airy_plate::airy_plate_of;
+use fringe::accumulate::{Contribution, Summation, accumulate_points, accumulate_points_par};
+use fringe::harness::analytic::plate::{Film, Pol};
+use fringe::optics::material::Medium;
+use fringe::scene::Scene;
+use fringe::trace::beats::{Beats, vector_rays};
+use fringe::trace::path::{EnumerationLimits, Target};
+use fringe::trace::{self, TraceSettings};
+use glam::DVec3;
+use num_complex::Complex64;
+use std::hint::black_box;
+use std::time::Instant;
+
+/// CPU time (s) of every thread of this process so far.
+fn cpu_seconds() -> f64 {
+    let mut ns = 0u64;
+    for task in std::fs::read_dir("/proc/self/task").expect("/proc/self/task (Linux)") {
+        let path = task.expect("task entry").path().join("schedstat");
+        if let Ok(s) = std::fs::read_to_string(path) {
+            ns += s
+                .split_whitespace()
+                .next()
+                .and_then(|v| v.parse::<u64>().ok())
+                .unwrap_or(0);
+        }
+    }
+    ns as f64 * 1e-9
+}
+
+/// Run `work` `reps` times and print the wall and CPU rates of `items` items per repetition.
+fn measure(what: &str, reps: usize, items: usize, mut work: impl FnMut()) {
+    work(); // warm up (allocations, pools, caches)
+    let (w0, c0) = (Instant::now(), cpu_seconds());
+    for _ in 0..reps {
+        work();
+    }
+    let (wall, cpu) = (w0.elapsed().as_secs_f64(), cpu_seconds() - c0);
+    let n = (reps * items) as f64;
+    println!(
+        "{what}: {reps} reps, {wall:.3} s wall, {cpu:.3} CPU-s: {:.2} M/s wall, {:.2} M per CPU-second",
+        n / wall / 1e6,
+        n / cpu / 1e6
+    );
+}
+
+/// SplitMix64, the generator of `benches/accumulate.rs` (same data).
+struct SplitMix(u64);
+impl SplitMix {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+}
+
+fn accumulate() {
+    let (t, p, g) = (1usize << 20, 1usize << 14, 4u64);
+    let mut r = SplitMix(1);
+    let d: Vec<Contribution> = (0..t)
+        .map(|_| {
+            let id = 1 + r.next_u64() % g;
+            let phase = 1e6 * r.unit();
+            let mut f = [Complex64::default(); 3];
+            for c in &mut f {
+                *c = Complex64::new(2.0 * r.unit() - 1.0, 2.0 * r.unit() - 1.0);
+            }
+            Contribution {
+                coherence_id: id,
+                phase_cycles: phase,
+                field: f,
+            }
+        })
+        .collect();
+    let offsets: Vec<usize> = (0..=p).map(|k| k * t / p).collect();
+    let mut out = vec![0.0; p];
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("rayon pool");
+    for (name, s) in [
+        ("plain", Summation::Plain),
+        ("compensated", Summation::Compensated),
+    ] {
+        measure(&format!("accumulate T1M_P16k_G4 1t {name}"), 20, t, || {
+            accumulate_points(black_box(&d), &offsets, s, &mut out);
+            black_box(&out);
+        });
+        measure(&format!("accumulate T1M_P16k_G4 2t {name}"), 20, t, || {
+            pool.install(|| accumulate_points_par(black_box(&d), &offsets, s, &mut out));
+            black_box(&out);
+        });
+    }
+}
+
+/// Settings for the tail bound ε = 1e-12 of a plate of index `n` at `theta` (as the bench).
+fn spectrum_settings(theta: f64, n: f64, thickness_m: f64, lambda_m: f64) -> TraceSettings {
+    let film = Film {
+        n1: 1.0,
+        n2: n,
+        n3: 1.0,
+        thickness_m,
+    };
+    let orders = [Pol::S, Pol::P]
+        .map(|p| film.orders_for_bound(theta.cos(), lambda_m, p, 1e-12))
+        .into_iter()
+        .max()
+        .unwrap();
+    let m = 2 * orders + 1;
+    TraceSettings {
+        limits: EnumerationLimits {
+            max_internal_reflections: m,
+            max_events: 2 * m + 8,
+        },
+        ..TraceSettings::default()
+    }
+}
+
+fn spectrum() {
+    const D: f64 = 3.217e-6;
+    let theta = 35f64.to_radians();
+    let lambdas: Vec<f64> = (0..401).map(|i| 400e-9 + 1e-9 * i as f64).collect();
+    let mid = lambdas[200];
+    let st = spectrum_settings(theta, 1.7, D, mid);
+    let (scene, target) = airy_plate_of(theta, Medium::constant("glass", 1.7), D);
+    let trace_once = |scene: &Scene, target: &Target| {
+        let optics = scene.optics(mid).expect("indices");
+        let plan = trace::plan(scene, &optics, &[DVec3::new(0.0, 0.0, 0.001)], &st.limits);
+        trace::arrivals(scene, &optics, &plan, target, &st).0
+    };
+    let mut beats = Beats::default();
+    let mut out = vec![0.0; lambdas.len()];
+    measure("airy/spectrum traced_once", 2000, lambdas.len(), || {
+        beats.set(&vector_rays(&trace_once(&scene, &target)));
+        beats.intensities(&lambdas, &mut out);
+        black_box(&out);
+    });
+    measure("airy/spectrum trace only", 2000, lambdas.len(), || {
+        black_box(trace_once(&scene, &target));
+    });
+    let rays = vector_rays(&trace_once(&scene, &target));
+    measure(
+        "airy/spectrum phasor batch only",
+        2000,
+        lambdas.len(),
+        || {
+            beats.set(&rays);
+            beats.intensities(&lambdas, &mut out);
+            black_box(&out);
+        },
+    );
+}
+
+fn main() {
+    match std::env::args().nth(1).as_deref() {
+        Some("accumulate") => accumulate(),
+        Some("spectrum") => spectrum(),
+        _ => {
+            eprintln!("usage: cpu_rates accumulate|spectrum");
+            std::process::exit(2);
+        }
+    }
+}
