@@ -208,45 +208,33 @@ fn a_thick_gap_beyond_the_critical_angle_is_compared_on_both_sides() {
     }
 }
 
-/// A 50 nm gap at 60° couples through (T ≈ 0.3): refused, naming κ and a thickness from which
-/// the coupling is below [`FTIR_NEGLIGIBLE`]; at 1.1 × that thickness the scene is accepted and
-/// passes on the reflected side.
+/// A 50 nm gap at 60° couples through (T ≈ 0.3). It was refused on the transmitted side
+/// ("frustrated total reflection moves T by …"); the tracer now starts the tunnelled wave on the
+/// far face (`EventKind::Tunnel`, docs/PHYSICS.md §5), so both sides are compared: each traced
+/// value is within its gate of the closed form, the coupling is far above
+/// [`FTIR_NEGLIGIBLE`], and the traced R and T carry all the power (R + T = 1; the 50-digit
+/// values of such films are in `truth_tunnelling`).
 #[test]
-fn a_thin_gap_beyond_the_critical_angle_is_refused_with_the_thickness_that_is_accepted() {
-    let e = run_json("thin_gap", &ftir_film(0.05, 60.0, "transmitted")).unwrap_err();
-    assert!(e.json_path.starts_with("$.references"), "{}", e.json_path);
-    assert!(
-        e.message.contains("frustrated total reflection"),
-        "{}",
-        e.message
-    );
-    let kappa =
-        std::f64::consts::TAU / 550e-9 * (2.25 * 60f64.to_radians().sin().powi(2) - 1.0).sqrt();
-    assert!(
-        e.message.contains(&format!("κ = {kappa:.4e} /m")),
-        "{}",
-        e.message
-    );
-    let thicker: f64 = e
-        .message
-        .split("thicker than ")
-        .nth(1)
-        .and_then(|s| s.split(' ').next())
-        .and_then(|s| s.parse().ok())
-        .expect("the message names the thickness");
-    // T ∝ e^{−2κd} falls from ~0.3 at 50 nm to 1e-13 near 50 nm + ln(0.3/1e-13)/(2κ) = 1.6 µm.
-    assert!(thicker > 1.0e-6 && thicker < 3.0e-6, "{thicker}");
+fn a_thin_gap_beyond_the_critical_angle_is_traced_on_both_sides() {
+    let mut sum = 0.0;
     for side in ["transmitted", "reflected"] {
-        let r = run_json("thicker_gap", &ftir_film(1.1 * thicker * 1e6, 60.0, side))
-            .unwrap_or_else(|e| panic!("{side} at {thicker}: {}", e.message));
+        let r = run_json("thin_gap", &ftir_film(0.05, 60.0, side))
+            .unwrap_or_else(|e| panic!("{side}: refused: {}", e.message));
         let m = &r.metrics[0];
         let traced = m.traced[&Fidelity::Vector][0];
+        let tol = m.tolerances[&Fidelity::Vector];
+        println!("{side}: traced {traced}, closed form {}", m.analytic[0]);
         assert!(
-            (traced - m.analytic[0]).abs() <= FTIR_NEGLIGIBLE,
+            (traced - m.analytic[0]).abs() <= tol,
             "{side}: {traced} vs {}",
             m.analytic[0]
         );
+        if side == "transmitted" {
+            assert!(traced > 1e3 * FTIR_NEGLIGIBLE, "T {traced}");
+        }
+        sum += traced;
     }
+    assert!((sum - 1.0).abs() <= 1e-14, "R + T = {sum}");
 }
 
 /// The two-beam plate under a point source with the top beam beyond the critical angle: a dense

@@ -112,14 +112,6 @@ fn explore(
     let x = scene.surfaces[j].plane.project(o + t * d);
     let Some(so) = optics.surfaces[j] else { return }; // opaque: absorbed
     let normal = scene.surfaces[j].plane.normal;
-    let hit = InterfaceHit {
-        surface: j,
-        point: x,
-        normal,
-        optics: so,
-        coherence: scene.surfaces[j].coherence(),
-        layers: optics.layers[j],
-    };
     let (n1, n2) = interaction::indices_for(so, normal, d, n);
     // TIR verdicts and refracted directions as the solver forms them (`step_planes`): from the
     // (n cos θ)² carried in double-double between parallel faces. An f64 cos²θt = 1 − η²
@@ -152,7 +144,7 @@ fn explore(
             found,
         );
     }
-    let refracted = match hit.optics {
+    let refracted = match so {
         SurfaceOptics::Dielectric { .. } if n1 != n2 => (q2_t.hi >= 0.0)
             .then(|| interaction::snell_direction(d, normal, (n1, n2), q2_t.sqrt().to_f64() / n2)),
         SurfaceOptics::Dielectric { .. } | SurfaceOptics::Splitter { .. } => {

@@ -20,7 +20,7 @@
 //! source in a homogeneous medium this is exactly 1/r².
 
 use crate::optics::double_double::{DoubleDouble, projection, segment_length};
-use crate::optics::interaction::{InterfaceHit, SurfaceOptics, indices_for};
+use crate::optics::interaction::{SurfaceOptics, indices_for};
 use crate::optics::trail::Trail;
 use crate::scene::geometry::{Extent, Plane};
 use crate::scene::source::Emitter;

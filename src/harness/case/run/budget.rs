@@ -85,12 +85,29 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
     ];
     // Beyond the critical angle of the film's top face the film carries no propagating wave:
     // the traced reflection (r_layer) and tunnelled wave (t_layer) are the whole Airy sum
-    // (docs/PHYSICS.md §5), with no orders inside the film and no tail to bound or close.
-    if f.frustration(cos1, lambda_m).is_some() {
-        return Ok(Budget {
-            internal: 3,
-            closed: false,
-        });
+    // (docs/PHYSICS.md §5), with no orders inside the film and no tail to bound or close. The
+    // verdict is the tracer's ((n2 cos θ2)² < 0 from the double-double normal wavevector,
+    // `interaction::normal_wavevector_squares`), with a margin of 1e-12 n1² so that no
+    // rounding of the direction can put the tracer on the other side: an f64 cos θ1 called
+    // films 1e-10 below the critical angle frustrated, and their orders were cut (fuzz `airy`
+    // seed 1, near_critical scenes such as 77). Inside the margin the tail rule below applies.
+    let top = built
+        .surface(&format!("{film}.top"))
+        .map_err(|e| case_err(case, "$.references", e))?;
+    let direction = built.scene.sources.iter().find_map(|s| match s.emitter {
+        crate::scene::source::Emitter::PlaneWave { direction, .. } => Some(direction),
+        _ => None,
+    });
+    if let Some(d) = direction {
+        let normal = built.scene.surfaces[top].plane.normal;
+        let (_, q2_2) =
+            crate::optics::interaction::normal_wavevector_squares(d, normal, (f.n1, f.n2), None);
+        if q2_2.hi < -1e-12 * f.n1 * f.n1 {
+            return Ok(Budget {
+                internal: 3,
+                closed: false,
+            });
+        }
     }
     // The most orders the cap allows (2 N + 1 internal reflections); the bound decreases with
     // N, so the bound needs more than the cap exactly when it is not met at N.
