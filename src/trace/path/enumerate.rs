@@ -57,13 +57,16 @@ pub fn discover_sequences(
         explore(
             scene,
             optics,
-            o,
-            d,
-            optics.ambient_index,
-            None,
-            None,
-            0,
-            (TreeBuilder::ROOT, 0),
+            Probe {
+                o,
+                d,
+                n: optics.ambient_index,
+                from: None,
+                carried: None,
+                internal: 0,
+                parent: None,
+                depth: 0,
+            },
             limits,
             &mut found,
         );
@@ -71,28 +74,65 @@ pub fn discover_sequences(
     found.finish()
 }
 
-#[allow(clippy::too_many_arguments)]
-fn explore(
-    scene: &Scene,
-    optics: &SceneOptics,
+/// One probe ray waiting to be explored: where it starts, its direction and medium, the
+/// surface it leaves, the (n cos θ)² it carries between parallel faces, the internal
+/// reflections so far, and the tree node it extends (`parent`: the node and the event that
+/// creates it; `None` for the root).
+struct Probe {
     o: DVec3,
     d: DVec3,
     n: f64,
     from: Option<usize>,
     carried: Option<(DVec3, DoubleDouble)>,
     internal: usize,
-    (node, depth): (usize, usize),
+    parent: Option<(usize, Event)>,
+    depth: usize,
+}
+
+/// Explore the ray tree of `start` depth first with an explicit stack (a film near grazing
+/// incidence runs thousands of events deep: recursion overflowed a worker thread's stack,
+/// `fringe fuzz --family airy --count 10000 --seed 1`). Children are pushed in reverse and
+/// their tree nodes created when popped, so nodes are made in the order a recursion would
+/// make them: reflected subtree, then tunnelled, then refracted.
+fn explore(
+    scene: &Scene,
+    optics: &SceneOptics,
+    start: Probe,
     limits: &EnumerationLimits,
     found: &mut TreeBuilder,
 ) {
-    found.mark(node);
-    if depth >= limits.max_events {
-        return;
+    let mut stack = vec![start];
+    while let Some(p) = stack.pop() {
+        let node = match p.parent {
+            Some((parent, event)) => found.child(parent, event),
+            None => TreeBuilder::ROOT,
+        };
+        found.mark(node);
+        let mut children = explore_one(scene, optics, &p, node, limits);
+        while let Some(c) = children.pop() {
+            stack.push(c);
+        }
+    }
+}
+
+/// The children of one probe ray, in the order they are explored: reflected, tunnelled,
+/// refracted (none at the depth limit, at an opaque surface or where nothing is ahead).
+fn explore_one(
+    scene: &Scene,
+    optics: &SceneOptics,
+    p: &Probe,
+    node: usize,
+    limits: &EnumerationLimits,
+) -> Vec<Probe> {
+    let mut children = Vec::new();
+    let (o, d, n) = (p.o, p.d, p.n);
+    if p.depth >= limits.max_events {
+        return children;
     }
     // Nearest surface ahead that stops or splits the ray.
     let mut best: Option<(f64, usize)> = None;
     for (j, surf) in scene.surfaces.iter().enumerate() {
-        if Some(j) == from {
+        if Some(j) == p.from {
             continue;
         }
         // Any plane ahead (t > 0, no distance epsilon: a film of 1 pm is found); the surface
@@ -107,10 +147,12 @@ fn explore(
             }
         }
     }
-    let Some((t, j)) = best else { return };
+    let Some((t, j)) = best else { return children };
     // On the plane itself (as the solver's `step_planes` puts it).
     let x = scene.surfaces[j].plane.project(o + t * d);
-    let Some(so) = optics.surfaces[j] else { return }; // opaque: absorbed
+    let Some(so) = optics.surfaces[j] else {
+        return children; // opaque: absorbed
+    };
     let normal = scene.surfaces[j].plane.normal;
     let (n1, n2) = interaction::indices_for(so, normal, d, n);
     // TIR verdicts and refracted directions as the solver forms them (`step_planes`): from the
@@ -119,30 +161,20 @@ fn explore(
     // total reflection where the ray refracts out, and every order through a film at
     // grazing incidence was missing from the plan (issue #12: the Airy tail could not be
     // closed, `fringe fuzz --family airy --seed 1`, scenes 6, 69, 135, 163, 217).
-    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), carried);
+    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), p.carried);
     let is_internal = n != optics.ambient_index;
-    if !is_internal || internal < limits.max_internal_reflections {
-        let child = found.child(
-            node,
-            Event {
-                surface: j,
-                kind: EventKind::Reflect,
-            },
-        );
-        let inc = usize::from(is_internal);
-        explore(
-            scene,
-            optics,
-            x,
-            fresnel::reflect(d, normal),
+    let event = |kind| Some((node, Event { surface: j, kind }));
+    if !is_internal || p.internal < limits.max_internal_reflections {
+        children.push(Probe {
+            o: x,
+            d: fresnel::reflect(d, normal),
             n,
-            Some(j),
-            Some((normal, q2_i)),
-            internal + inc,
-            (child, depth + 1),
-            limits,
-            found,
-        );
+            from: Some(j),
+            carried: Some((normal, q2_i)),
+            internal: p.internal + usize::from(is_internal),
+            parent: event(EventKind::Reflect),
+            depth: p.depth + 1,
+        });
     }
     let refracted = match so {
         SurfaceOptics::Dielectric { .. } if n1 != n2 => (q2_t.hi >= 0.0)
@@ -153,98 +185,68 @@ fn explore(
         _ => None,
     };
     // Beyond the critical angle with a layer behind the face: the tunnelled wave.
-    if q2_t.hi < 0.0 {
-        explore_tunnel(
-            scene,
-            optics,
-            (x, d, j),
-            (n1, n2),
-            (q2_i, q2_t),
-            internal,
-            (node, depth),
-            limits,
-            found,
-        );
+    if q2_t.hi < 0.0
+        && let Some(c) = tunnelled(scene, optics, (x, d, j), (n1, n2), (q2_i, q2_t), p, node)
+    {
+        children.push(c);
     }
     if let Some(d_t) = refracted {
-        let child = found.child(
-            node,
-            Event {
-                surface: j,
-                kind: EventKind::Refract,
-            },
-        );
-        explore(
-            scene,
-            optics,
-            x,
-            d_t,
-            n2,
-            Some(j),
-            Some((normal, q2_t)),
-            internal,
-            (child, depth + 1),
-            limits,
-            found,
-        );
+        children.push(Probe {
+            o: x,
+            d: d_t,
+            n: n2,
+            from: Some(j),
+            carried: Some((normal, q2_t)),
+            internal: p.internal,
+            parent: event(EventKind::Refract),
+            depth: p.depth + 1,
+        });
     }
+    children
 }
 
 /// The tunnelled child of a ray meeting surface `j` at `x` along `d` beyond its critical angle
 /// (frustrated total reflection, docs/PHYSICS.md §5), when the face has a layer behind it and
-/// a wave can leave its far face ((n3 cos θ3)² > 0, as `stack::tunnel_step` decides): explored
-/// from the foot of the normal on the far face ([`tunnel_exit`]). Kept out of [`explore`]
-/// (never inlined) so that its locals do not enlarge every frame of the recursion, which runs
-/// thousands of events deep for a film near grazing incidence.
-#[inline(never)]
-#[allow(clippy::too_many_arguments)]
-fn explore_tunnel(
+/// a wave can leave its far face ((n3 cos θ3)² > 0, as `stack::tunnel_step` decides): it
+/// starts from the foot of the normal on the far face ([`tunnel_exit`]).
+fn tunnelled(
     scene: &Scene,
     optics: &SceneOptics,
     (x, d, j): (DVec3, DVec3, usize),
     (n1, n2): (f64, f64),
     (q2_i, q2_t): (DoubleDouble, DoubleDouble),
-    internal: usize,
-    (node, depth): (usize, usize),
-    limits: &EnumerationLimits,
-    found: &mut TreeBuilder,
-) {
+    p: &Probe,
+    node: usize,
+) -> Option<Probe> {
     let normal = scene.surfaces[j].plane.normal;
-    let layer = optics.layers[j][usize::from(d.dot(normal) >= 0.0)];
-    let Some(l) = layer else { return };
+    let l = optics.layers[j][usize::from(d.dot(normal) >= 0.0)]?;
     if !matches!(optics.surfaces[j], Some(SurfaceOptics::Dielectric { .. }))
         || n1 == n2
         || q2_t.hi >= 0.0
     {
-        return;
+        return None;
     }
     let n3 = l.n_beyond;
     let q2_3 = q2_i + two_prod(n3, n3) - two_prod(n1, n1);
     if q2_3.hi <= 0.0 {
-        return;
+        return None;
     }
-    let Some((exit, partner)) = tunnel_exit(scene, optics, j, x, d) else {
-        return;
-    };
+    let (exit, partner) = tunnel_exit(scene, optics, j, x, d)?;
     let d_3 = interaction::snell_direction(d, normal, (n1, n3), q2_3.sqrt().to_f64() / n3);
-    let child = found.child(
-        node,
-        Event {
-            surface: j,
-            kind: EventKind::Tunnel,
-        },
-    );
-    explore(
-        scene,
-        optics,
-        exit,
-        d_3,
-        n3,
-        Some(partner),
-        Some((normal, q2_3)),
-        internal,
-        (child, depth + 1),
-        limits,
-        found,
-    );
+    Some(Probe {
+        o: exit,
+        d: d_3,
+        n: n3,
+        from: Some(partner),
+        carried: Some((normal, q2_3)),
+        internal: p.internal,
+        parent: Some((
+            node,
+            Event {
+                surface: j,
+                kind: EventKind::Tunnel,
+            },
+        )),
+        depth: p.depth + 1,
+    })
 }
