@@ -73,7 +73,16 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
                 built.scene.surfaces[top].plane.normal,
             )
         });
-    if inc.is_some_and(|inc| f.frustration(inc, lambda_m).is_some()) {
+    // Only where no index depends on the wavelength: the budget is taken at one wavelength of
+    // the spectrum, and a dispersive film evanescent there may carry a propagating wave at
+    // another, whose orders one internal reflection would cut silently.
+    let dispersionless = built.media.values().all(|m| {
+        matches!(
+            m.dispersion,
+            crate::optics::material::Dispersion::Constant { .. }
+        )
+    });
+    if dispersionless && inc.is_some_and(|inc| f.frustration(inc, lambda_m).is_some()) {
         return Ok(Budget {
             internal: 1,
             closed: false,
