@@ -57,37 +57,6 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
         })?;
     let (f, cos1) = reference::airy_film(built, &film, lambda_m)
         .map_err(|e| case_err(case, "$.references", e))?;
-    // Beyond the critical angle of the top face no order enters the film: the tracer reflects
-    // at the top face with the layer's frustrated coefficient (`fresnel::frustrated_layer`),
-    // the whole Airy sum of the evanescent film in one reflection (docs/PHYSICS.md §5), and the
-    // refraction into the film is a total reflection. No order is left out, so there is no
-    // tail to bound or close; its bound (|r| = 1 inside: no decay) asked for more than the cap
-    // and the closure found no round trip to close (fuzz `airy` seed 1: 13 of 300 scenes,
-    // e.g. 6, 55, 119, 285, refused as "the tail cannot be closed exactly").
-    // cos²θ1 with exact products, as the reference and the tracer form it.
-    let inc = build::plane_wave(&built.scene)
-        .zip(built.surface(&format!("{film}.top")).ok())
-        .map(|((d, _), top)| {
-            crate::harness::analytic::plate::Incidence::between(
-                d,
-                built.scene.surfaces[top].plane.normal,
-            )
-        });
-    // Only where no index depends on the wavelength: the budget is taken at one wavelength of
-    // the spectrum, and a dispersive film evanescent there may carry a propagating wave at
-    // another, whose orders one internal reflection would cut silently.
-    let dispersionless = built.media.values().all(|m| {
-        matches!(
-            m.dispersion,
-            crate::optics::material::Dispersion::Constant { .. }
-        )
-    });
-    if dispersionless && inc.is_some_and(|inc| f.frustration(inc, lambda_m).is_some()) {
-        return Ok(Budget {
-            internal: 1,
-            closed: false,
-        });
-    }
     let pols = [
         crate::harness::analytic::plate::Pol::S,
         crate::harness::analytic::plate::Pol::P,
@@ -100,6 +69,18 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
     // rounding of the direction can put the tracer on the other side: an f64 cos θ1 called
     // films 1e-10 below the critical angle frustrated, and their orders were cut (fuzz `airy`
     // seed 1, near_critical scenes such as 77). Inside the margin the tail rule below applies.
+    // Before this rule such points asked for a tail bound that does not decay (|r| = 1 inside)
+    // and were refused as "the tail cannot be closed exactly" (fuzz `airy` seed 1: 13 of 300
+    // scenes, e.g. 6, 55, 119, 285).
+    // Only where no index depends on the wavelength: the budget is taken at one wavelength of
+    // the spectrum, and a dispersive film evanescent there may carry a propagating wave at
+    // another, whose orders one internal reflection would cut silently.
+    let dispersionless = built.media.values().all(|m| {
+        matches!(
+            m.dispersion,
+            crate::optics::material::Dispersion::Constant { .. }
+        )
+    });
     let top = built
         .surface(&format!("{film}.top"))
         .map_err(|e| case_err(case, "$.references", e))?;
@@ -111,7 +92,7 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
         let normal = built.scene.surfaces[top].plane.normal;
         let (_, q2_2) =
             crate::optics::interaction::normal_wavevector_squares(d, normal, (f.n1, f.n2), None);
-        if q2_2.hi < -1e-12 * f.n1 * f.n1 {
+        if dispersionless && q2_2.hi < -1e-12 * f.n1 * f.n1 {
             return Ok(Budget {
                 internal: 3,
                 closed: false,
