@@ -102,13 +102,13 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
 /// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
 /// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
 /// 110 s measured) too; four (2.8e9) are refused.
-pub(crate) const MAX_PATH_EVENTS: f64 = 5.0e8;
+pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
 /// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
 /// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
 /// this project at a load of about 12 (six developers building); README "Limits" gives the
 /// runs and the command. Used only to state the estimate in time.
-pub(crate) const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
 
 /// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
 /// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
