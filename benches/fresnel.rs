@@ -2,7 +2,7 @@
 //! incidence angles, outside TIR (air → glass), fully inside TIR (glass → air beyond the
 //! critical angle) and a 0–90° sweep from glass that crosses the critical angle.
 //!
-//! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench --bench fresnel`
+//! Run: `cargo bench -p fringe-benches --bench fresnel`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fringe::optics::fresnel::{critical_angle, fresnel};

@@ -4,7 +4,7 @@
 //! reflections (2k − 1 internal reflections, 2k + 1 events). Each iteration solves the path to
 //! a row of 16 screen points; throughput is in paths.
 //!
-//! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench --bench path`
+//! Run: `cargo bench -p fringe-benches --bench path`
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use fringe::optics::material::Medium;

@@ -5,7 +5,7 @@
 //! scene (`figures/plate_amplitude_division.json`) at `vector` fidelity in white light with 81
 //! wavelengths, 300 × 300 pixels (throughput in pixels; the 900 × 900 target is 9× the work).
 //!
-//! Run: `cargo bench --bench render`
+//! Run: `cargo bench -p fringe-benches --bench render`
 
 use criterion::{Criterion, Throughput, criterion_group, criterion_main};
 use fringe::accumulate::fidelity::Fidelity;

@@ -50,7 +50,7 @@ fn fast_two_sum(a: f64, b: f64) -> DoubleDouble {
 
 /// a − b exactly as hi + lo (TwoSum of a and −b): the exact difference of two coordinates.
 #[inline(always)]
-pub(crate) fn two_diff(a: f64, b: f64) -> DoubleDouble {
+pub fn two_diff(a: f64, b: f64) -> DoubleDouble {
     two_sum(a, -b)
 }
 
@@ -215,7 +215,7 @@ impl SubAssign for DoubleDouble {
 
 /// The exact coordinate differences b − a, each as a double-double.
 #[inline(always)]
-fn difference(a: DVec3, b: DVec3) -> [DoubleDouble; 3] {
+pub fn difference(a: DVec3, b: DVec3) -> [DoubleDouble; 3] {
     [two_diff(b.x, a.x), two_diff(b.y, a.y), two_diff(b.z, a.z)]
 }
 
@@ -223,7 +223,7 @@ fn difference(a: DVec3, b: DVec3) -> [DoubleDouble; 3] {
 /// exact, their squares and sum double-double, so the length of a 100 m segment keeps ~1e-30 m
 /// (relative ~1e-31), far below what rounding the points themselves does to a path.
 #[inline]
-pub(crate) fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
+pub fn segment_length(a: DVec3, b: DVec3) -> DoubleDouble {
     // Each square (h + l)² = TwoProd(h, h) + 2hl (l² < 2⁻¹⁰⁶ h² is below the format); the three
     // are positive, so the sum needs no cancellation-proof addition: two TwoSums of the high
     // parts, the low parts added in f64 (relative error a few 2⁻¹⁰⁴).
@@ -259,130 +259,5 @@ pub fn projection(d: DVec3, x: DVec3, reference: DVec3) -> DoubleDouble {
         p
     } else {
         p / norm2.sqrt()
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn two_sum_and_two_prod_are_exact() {
-        // 1 + 2⁻⁶⁰ is not an f64: the sum keeps the small part in lo.
-        let s = two_sum(1.0, 2f64.powi(-60));
-        assert_eq!((s.hi, s.lo), (1.0, 2f64.powi(-60)));
-        // (1 + 2⁻³⁰)² = 1 + 2⁻²⁹ + 2⁻⁶⁰.
-        let a = 1.0 + 2f64.powi(-30);
-        let p = two_prod(a, a);
-        assert_eq!((p.hi, p.lo), (1.0 + 2f64.powi(-29), 2f64.powi(-60)));
-        // 0.1 − 0.1·(1 + 2⁻⁵²) as an exact difference.
-        let b = 0.1 * (1.0 + f64::EPSILON);
-        let d = two_diff(0.1, b);
-        assert_eq!(d.hi + d.lo, 0.1 - b);
-    }
-
-    #[test]
-    fn sum_of_a_large_and_a_small_path_keeps_both() {
-        // 100 m + 1 pm − 100 m = 1 pm (f64 alone keeps 1.4e-14 m steps at 100 m).
-        let s = DoubleDouble::from(100.0) + 1e-12 - DoubleDouble::from(100.0);
-        let err = (s.to_f64() - 1e-12).abs();
-        assert!(
-            err <= 1e-28,
-            "actual {:e}, expected 1e-12, err {err:e}",
-            s.to_f64()
-        );
-    }
-
-    #[test]
-    fn division_recovers_a_double_double_quotient() {
-        // (1/3) · 3 and 2/7 against their exact decimal expansions (to ~1e-31).
-        let third = DoubleDouble::from(1.0) / DoubleDouble::from(3.0);
-        let back = third * 3.0;
-        assert_eq!(back.hi, 1.0);
-        assert!(back.lo.abs() < 1e-31, "{back:?}");
-        // 2/7 = 0.285714285714285714285714285714285714…: hi + lo from the 34-digit value.
-        let q = DoubleDouble::from(2.0) / DoubleDouble::from(7.0);
-        let hi = 0.285_714_285_714_285_7_f64;
-        assert_eq!(q.hi, hi);
-        // lo = 2/7 − hi, evaluated in exact rational arithmetic (Python `fractions`) and rounded.
-        let lo = 1.586_032_892_321_652e-17;
-        assert!((q.lo - lo).abs() < 1e-32, "{q:?} vs lo {lo:e}");
-    }
-
-    #[test]
-    fn square_root_of_a_square() {
-        // √(x²) = x for x = 1 + 2⁻⁴⁰ (x² needs 81 bits: hi + lo).
-        let x = 1.0 + 2f64.powi(-40);
-        let r = two_prod(x, x).sqrt();
-        assert_eq!(r.hi, x);
-        assert!(r.lo.abs() <= 1e-31, "lo {:e}", r.lo);
-        // √2² = 2 to double-double precision.
-        let s2 = DoubleDouble::from(2.0).sqrt();
-        let back = s2 * s2 - DoubleDouble::from(2.0);
-        assert!(
-            back.to_f64().abs() <= 1e-30,
-            "√2² − 2 = {:e}",
-            back.to_f64()
-        );
-        assert_eq!(DoubleDouble::ZERO.sqrt(), DoubleDouble::ZERO);
-    }
-
-    #[test]
-    fn segment_length_of_a_3_4_5_triangle_far_from_the_origin() {
-        // The same 3-4-5 µm segment at the origin and 100 m away: exact differences make the
-        // two lengths agree to double-double precision.
-        let len = |o: DVec3| segment_length(o, o + DVec3::new(3e-6, 4e-6, 0.0));
-        let near = len(DVec3::ZERO);
-        assert!((near.to_f64() - 5e-6).abs() <= 1e-21);
-        let o = DVec3::new(100.0, -37.0, 12.5);
-        let b = o + DVec3::new(3e-6, 4e-6, 0.0);
-        // The f64 point b is o + (3e-6, 4e-6, 0) rounded; its exact differences give the length.
-        let (ex, ey) = (b.x - o.x, b.y - o.y); // exact: Sterbenz (b within a factor 2 of o)
-        let expected = ex.hypot(ey);
-        let err = (segment_length(o, b).to_f64() - expected).abs();
-        assert!(
-            err <= 1e-21,
-            "actual {:e}, expected {expected:e}",
-            segment_length(o, b).to_f64()
-        );
-    }
-
-    #[test]
-    fn segment_length_equals_the_double_double_norm() {
-        // The fast sum of squares against the general double-double arithmetic.
-        let pts = [
-            (DVec3::new(0.1, -0.2, 0.3), DVec3::new(100.0, 3e-7, -12.5)),
-            (DVec3::new(1e-12, 0.0, 0.0), DVec3::new(0.0, 1e-12, 1e-12)),
-            (
-                DVec3::new(567.0, 0.0, 1e-3),
-                DVec3::new(567.0 + 1e-6, 0.0, -2e-6),
-            ),
-        ];
-        for (a, b) in pts {
-            let [dx, dy, dz] = difference(a, b);
-            let general = (dx * dx + dy * dy + dz * dz).sqrt();
-            let fast = segment_length(a, b);
-            let err = (fast - general).to_f64().abs();
-            assert!(
-                err <= 1e-30 * general.hi,
-                "{a} → {b}: {fast:?} vs {general:?}"
-            );
-        }
-    }
-
-    #[test]
-    fn projection_of_a_far_reference_keeps_the_difference() {
-        // x − reference = (0, 0, −100) + (1e-9, 0, 0) along d = z: the projection is −100 m;
-        // two points 1 nm apart along d differ by exactly 1 nm.
-        let d = DVec3::Z;
-        let r = DVec3::new(0.0, 0.0, 100.0);
-        let p1 = projection(d, DVec3::new(1e-3, 0.0, 0.0), r);
-        let p2 = projection(d, DVec3::new(1e-3, 0.0, 1e-9), r);
-        let diff = (p2 - p1).to_f64();
-        assert!(
-            (diff - 1e-9).abs() <= 1e-25,
-            "actual {diff:e}, expected 1e-9"
-        );
-        assert_eq!(p1.to_f64(), -100.0);
     }
 }

@@ -13,7 +13,7 @@ use std::path::Path;
 pub const BUDGET_VAR: &str = "FRINGE_MEMORY_BYTES";
 
 /// Reads the first number (kB) after `key` in a `/proc/meminfo`-style text, in bytes.
-fn meminfo_bytes(text: &str, key: &str) -> Option<u64> {
+pub fn meminfo_bytes(text: &str, key: &str) -> Option<u64> {
     text.lines()
         .find_map(|l| l.strip_prefix(key)?.strip_prefix(':'))
         .and_then(|rest| rest.split_whitespace().next()?.parse::<u64>().ok())
@@ -25,7 +25,7 @@ fn read(path: &str) -> Option<String> {
 }
 
 /// The room under a cgroup v2 limit: `max` − `current` (`None` for "max", i.e. no limit).
-fn cgroup_room(max: &str, current: &str) -> Option<u64> {
+pub fn cgroup_room(max: &str, current: &str) -> Option<u64> {
     let max: u64 = max.trim().parse().ok()?;
     let current: u64 = current.trim().parse().unwrap_or(0);
     Some(max.saturating_sub(current))
@@ -75,36 +75,5 @@ pub fn check_fits(what: &str, needed: u64, available: Option<u64>) -> Result<(),
             format_bytes(a)
         )),
         _ => Ok(()),
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn meminfo_is_read_in_kib() {
-        let t = "MemTotal:       24000000 kB\nMemFree: 100 kB\nMemAvailable:   2048 kB\n";
-        assert_eq!(meminfo_bytes(t, "MemAvailable"), Some(2048 * 1024));
-        assert_eq!(meminfo_bytes(t, "MemFree"), Some(100 * 1024));
-        assert_eq!(meminfo_bytes(t, "Cached"), None);
-    }
-
-    #[test]
-    fn cgroup_room_is_limit_minus_usage() {
-        assert_eq!(cgroup_room("1000\n", "300\n"), Some(700));
-        assert_eq!(cgroup_room("max\n", "300\n"), None);
-        assert_eq!(cgroup_room("100", "300"), Some(0));
-    }
-
-    #[test]
-    fn refusal_names_both_amounts() {
-        assert!(check_fits("x", 10, None).is_ok());
-        assert!(check_fits("x", 10, Some(10)).is_ok());
-        let e = check_fits("a 900x900 render", 3 << 30, Some(1 << 30)).unwrap_err();
-        assert!(
-            e.contains("3.0 GiB") && e.contains("1.0 GiB") && e.contains(BUDGET_VAR),
-            "{e}"
-        );
     }
 }

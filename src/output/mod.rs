@@ -3,7 +3,7 @@
 
 #[doc(hidden)]
 pub mod figures;
-pub(crate) mod memory;
+pub mod memory;
 pub mod render;
 #[doc(hidden)]
 pub mod report;

@@ -52,5 +52,6 @@ mod truth_small_deviations;
 mod truth_tail_closure;
 mod truth_thick_plates;
 mod truth_tunnelling;
+mod unit;
 mod unpolarized;
 mod young_two_point;

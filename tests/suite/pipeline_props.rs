@@ -214,3 +214,34 @@ fn the_work_estimate_follows_the_tracer() {
     assert!((w2 / w1 - 721.0 / 361.0).abs() < 1e-12, "{w1:e} {w2:e}");
     assert!(two_beam(20, 361) > w1);
 }
+
+/// The bounce-convergence report of a monochrome Airy case traces up to 24 points at the rungs
+/// 2·orders − 1 ≤ m of its ladder (1, 3, 5, …, 127 internal reflections), not twelve times the
+/// full budget: at m = 2000 under the far-field walk (work ∝ m + 2) the ladder is
+/// Σ(m_k + 2) = 452 of 2002, so the report weighs 23 or 24 (every 9th of 201, every 17th of
+/// 401 angles) times 452/2002 ≈ 0.23 points, and 401 angles cost (401 + 5.4)/(201 + 5.2) of 201
+/// (the two sweeps share the centre angle, where the tree is counted).
+#[test]
+fn the_convergence_report_is_counted_at_its_own_budgets() {
+    let airy = |count: usize| {
+        let path = Path::new(env!("CARGO_MANIFEST_DIR")).join("cases/plate_airy_s.json");
+        let mut doc: Value =
+            serde_json::from_str(&std::fs::read_to_string(&path).unwrap()).unwrap();
+        doc["trace"] = serde_json::json!({ "max_internal_reflections": 2000 });
+        doc["probe"]["sweep"]["count"] = count.into();
+        let case = load::parse(&path, &doc.to_string()).expect("valid case");
+        run::preflight(&case).expect("accepted")
+    };
+    let ratio = airy(401) / airy(201);
+    let ladder: f64 = [
+        1.0, 3.0, 5.0, 7.0, 11.0, 15.0, 23.0, 31.0, 47.0, 63.0, 95.0, 127.0,
+    ]
+    .iter()
+    .map(|m| m + 2.0)
+    .sum();
+    let expected = (401.0 + 24.0 * ladder / 2002.0) / (201.0 + 23.0 * ladder / 2002.0);
+    assert!(
+        (ratio - expected).abs() < 1e-9 * expected,
+        "{ratio} vs {expected}"
+    );
+}

@@ -105,39 +105,3 @@ pub fn refract(u: &[TwoFloat; 3], n: &[TwoFloat; 3], n1: f64, n2: f64) -> Option
     let k = eta * cos_i - c2t.sqrt();
     Some([0, 1, 2].map(|i| eta * u[i] + k * n_o[i]))
 }
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    /// Two distances of 1 m that differ by 1e-13 m: their f64 difference loses ~3 digits,
-    /// the double-double one keeps it to ~1e-27 m (the points are exact f64 coordinates).
-    #[test]
-    fn distances_keep_their_difference() {
-        let o = DVec3::ZERO;
-        let a = DVec3::new(1.0, 0.0, 0.0);
-        let b = DVec3::new(1.0 + 2f64.powi(-43), 0.0, 0.0); // 1.1368683772161603e-13 past a
-        let d = distance(b, o) - distance(a, o);
-        assert_eq!(f64::from(d), 2f64.powi(-43));
-        // Off axis: |(3, 4, 0) + (0, 0, ε)| − 5 = ε²/10 to first order.
-        let eps = 1e-6;
-        let l = distance(DVec3::new(3.0, 4.0, eps), o) - TwoFloat::from(5.0);
-        let exact = eps * eps / (5.0 + (25.0 + eps * eps).sqrt()); // (√(25+ε²) − 5), stable
-        // twofloat's square root is good to ~1e-31 relative of the length (5 here), far below
-        // what any phase needs; f64 would lose the whole difference (ulp(25) = 3.6e-15).
-        assert!(
-            (f64::from(l) - exact).abs() <= 1e-13 * exact,
-            "actual {:e}, expected {exact:e}",
-            f64::from(l)
-        );
-    }
-
-    /// A path of 10 m + λ/4 has the phasor i whatever the path's size.
-    #[test]
-    fn phasor_of_a_long_path_keeps_the_quarter_cycle() {
-        let lambda = 550e-9;
-        let s = TwoFloat::new_mul(lambda, 18_181_818.0) + 0.25 * lambda;
-        let p = path_phasor(s, lambda);
-        assert!((p - Complex64::i()).norm() < 1e-15, "{p}");
-    }
-}

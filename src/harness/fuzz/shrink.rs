@@ -13,7 +13,7 @@
 use super::draws::DrawKind;
 
 /// Candidate replacements for a drawn value, simplest first, without repeats or `v` itself.
-pub(crate) fn candidates(v: f64, kind: DrawKind) -> Vec<f64> {
+pub fn candidates(v: f64, kind: DrawKind) -> Vec<f64> {
     let mut out: Vec<f64> = Vec::new();
     match kind {
         DrawKind::Choice | DrawKind::Flag => out.push(0.0),
@@ -56,7 +56,7 @@ fn simpler(a: f64, b: f64) -> bool {
 }
 
 /// `v` rounded to `digits` significant decimal digits.
-pub(crate) fn round_significant(v: f64, digits: i32) -> f64 {
+pub fn round_significant(v: f64, digits: i32) -> f64 {
     if v == 0.0 || !v.is_finite() {
         return v;
     }
@@ -71,7 +71,7 @@ pub(crate) fn round_significant(v: f64, digits: i32) -> f64 {
 
 /// Shrink `draws` while `still_fails` holds, with at most `budget` calls of `still_fails`.
 /// Returns the simplest failing draws found (the input if none simpler fails).
-pub(crate) fn shrink(
+pub fn shrink(
     draws: Vec<f64>,
     kinds: &[DrawKind],
     budget: usize,
@@ -103,44 +103,5 @@ pub(crate) fn shrink(
         if !changed {
             return best;
         }
-    }
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn rounding_keeps_the_leading_digits() {
-        assert_eq!(round_significant(123.456, 1), 100.0);
-        assert_eq!(round_significant(123.456, 2), 120.0);
-        assert_eq!(round_significant(-0.0012345, 3), -0.00123);
-        assert_eq!(round_significant(0.0, 3), 0.0);
-    }
-
-    #[test]
-    fn candidates_are_simplest_first_and_exclude_the_value() {
-        let c = candidates(2.5, DrawKind::Real { lo: -1.0, hi: 10.0 });
-        assert_eq!(&c[..4], &[0.0, 1.0, -1.0, 2.0]);
-        assert!(candidates(0.0, DrawKind::Real { lo: -1.0, hi: 1.0 }).is_empty());
-        assert_eq!(
-            candidates(1.0, DrawKind::Real { lo: -1.0, hi: 1.0 }),
-            vec![0.0]
-        );
-        assert!(!c.contains(&2.5));
-        assert_eq!(candidates(2.0, DrawKind::Choice), vec![0.0]);
-        assert!(candidates(0.0, DrawKind::Flag).is_empty());
-    }
-
-    #[test]
-    fn shrinks_to_the_boundary_of_the_failing_region() {
-        // "Fails" while x ≥ 3.7 and y anything: x becomes a round number ≥ 3.7, y becomes 0.
-        let real = DrawKind::Real { lo: 0.0, hi: 100.0 };
-        let out = shrink(vec![17.123456, 5.4321], &[real, real], 1000, |d| {
-            d[0] >= 3.7
-        });
-        assert_eq!(out[1], 0.0);
-        assert!(out[0] >= 3.7, "{out:?}");
-        assert!(out[0].to_string().len() <= 2, "{out:?}");
     }
 }

@@ -85,6 +85,7 @@ use film::{film_rows, finesse_rows, random_film_rows};
 pub use film::{traced_film, traced_film_with};
 use interface::{critical_rows, incidence_rows, index_rows};
 use paths::path_rows;
+pub use paths::round_to_binary32;
 pub use paths::{collinear_sources, path_points};
 pub(crate) use paths::{path_grid, path_points_with};
 
@@ -195,7 +196,8 @@ pub struct StabilityRow {
 }
 
 impl StabilityRow {
-    fn new(
+    /// A row of the sweep: the verdict is `deviation ≤ tolerance` (none for an illustration row).
+    pub fn new(
         group: &str,
         condition: String,
         quantity: &str,
@@ -328,26 +330,4 @@ pub fn csv(rows: &[StabilityRow]) -> String {
             ]
         }),
     )
-}
-
-#[cfg(test)]
-mod tests {
-    use super::*;
-
-    #[test]
-    fn csv_quotes_fields_with_commas() {
-        let r = StabilityRow::new(
-            "incidence",
-            "θ = 0, s".into(),
-            "r_s",
-            -0.2,
-            -0.2,
-            DeviationKind::Absolute,
-            Some(1e-14),
-        );
-        let text = csv(&[r]);
-        let line = text.lines().nth(1).unwrap();
-        assert!(line.starts_with("incidence,\"θ = 0, s\",r_s,"), "{line}");
-        assert!(line.ends_with(",absolute,1e-14,pass"), "{line}");
-    }
 }

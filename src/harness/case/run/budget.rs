@@ -140,13 +140,18 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
 /// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
 /// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
 /// 110 s measured) too; four (2.8e9) are refused.
-pub(crate) const MAX_PATH_EVENTS: f64 = 5.0e8;
+pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
 /// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
 /// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
 /// this project at a load of about 12 (six developers building); README "Limits" gives the
 /// runs and the command. Used only to state the estimate in time.
-pub(crate) const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+
+/// The reflected orders of the rungs of the bounce-convergence report of monochrome Airy cases
+/// (`convergence::convergence`), each traced at 2·orders − 1 internal reflections while that is
+/// within the case's budget.
+pub(super) const CONVERGENCE_ORDERS: [usize; 12] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64];
 
 /// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
 /// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
@@ -243,8 +248,8 @@ fn point_work(
 /// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
 /// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
-/// spectral samples; the bounce-convergence report of monochrome Airy cases adds twelve budgets
-/// of at most 24 points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
+/// spectral samples; the bounce-convergence report of monochrome Airy cases adds its ladder of
+/// budgets ([`CONVERGENCE_ORDERS`]) at up to 24 of the points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
 /// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;
@@ -288,7 +293,20 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
             )
         });
     if convergence_report {
-        weight += 12.0 * points.len().min(24) as f64;
+        // convergence::convergence: every `stride`-th point (at most 24), traced at
+        // 2·orders − 1 internal reflections for each rung of its ladder up to the budget, each
+        // rung scaled like a point of that budget (it was counted as twelve points at the full
+        // budget: 53× too much for m = 2000).
+        let stride = points.len().div_ceil(24).max(1);
+        let sampled = points.len().div_ceil(stride) as f64;
+        let walked = budgets[rep].1;
+        for orders in CONVERGENCE_ORDERS {
+            let internal = 2 * orders - 1;
+            if internal > worst.max(1) {
+                break;
+            }
+            weight += sampled * scale(&(internal, walked, 1.0));
+        }
     }
     let (per_point, measured) = point_work(case, &points[rep], worst, MAX_PATH_EVENTS / weight)?;
     let work = per_point * weight;

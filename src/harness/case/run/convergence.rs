@@ -45,7 +45,7 @@ pub(super) fn convergence(
         .into_iter()
         .max()
         .unwrap_or(0);
-    for orders in [1usize, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64] {
+    for orders in super::budget::CONVERGENCE_ORDERS {
         let internal = 2 * orders - 1;
         if internal > budget.max(1) {
             break;

@@ -26,7 +26,7 @@ mod wiring;
 pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
-pub use budget::{CLOSED_TAIL_ORDERS, preflight};
+pub use budget::{CLOSED_TAIL_ORDERS, MAX_PATH_EVENTS, SECONDS_PER_WORK_UNIT, preflight};
 use convergence::*;
 use metrics::*;
 use wiring::*;

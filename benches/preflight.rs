@@ -1,0 +1,122 @@
+//! Calibration of the work preflight (`fringe::harness::case::run::preflight`): for each scene,
+//! the estimate in work units and in seconds (`SECONDS_PER_WORK_UNIT`, CPU-seconds per unit)
+//! against the measured run of the case (`run::run`, what `fringe check` traces): its CPU-seconds
+//! (all threads, from /proc/self/stat, so the number does not depend on how loaded the machine
+//! is) and its wall time. Not a criterion bench: each scene runs once, and the table is the
+//! output. Scenes: every library case; plate_two_beam_paper with 1–3 plates stacked 1 mm apart
+//! (4 and more are refused by the preflight and are not run); plate_two_beam_paper with 40
+//! internal reflections; plate_airy_s at m = 2000 internal reflections (no tail rule) at 200
+//! angles (the far-field walk of `benches/airy.rs`).
+//!
+//! Run: `cargo bench -p fringe-benches --bench preflight` (optionally a substring of the scene
+//! names as the first argument).
+
+use fringe::harness::case::load;
+use fringe::harness::case::run::{self, MAX_PATH_EVENTS, SECONDS_PER_WORK_UNIT};
+use serde_json::{Value, json};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// CPU-seconds used by this process so far (user + system, all threads).
+fn cpu_seconds() -> f64 {
+    let stat = std::fs::read_to_string("/proc/self/stat").expect("/proc/self/stat (Linux)");
+    // Fields after the command name in parentheses: state is field 3; utime, stime are 14, 15.
+    let rest = &stat[stat.rfind(')').expect("stat format") + 2..];
+    let f: Vec<&str> = rest.split_whitespace().collect();
+    let ticks: f64 = f[11].parse::<f64>().unwrap() + f[12].parse::<f64>().unwrap();
+    ticks / 100.0 // USER_HZ
+}
+
+fn cases_dir() -> PathBuf {
+    Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases")
+}
+
+fn read(name: &str) -> (PathBuf, Value) {
+    let file = cases_dir().join(format!("{name}.json"));
+    let text = std::fs::read_to_string(&file).expect("library case");
+    (file, serde_json::from_str(&text).expect("case JSON"))
+}
+
+/// plate_two_beam_paper with `k` plates, each 1 mm below the one above (as the test
+/// `input_classes::stacked_plates_are_counted_and_refused_before_work` builds them).
+fn stacked(k: usize) -> Value {
+    let (_, v) = read("plate_two_beam_paper");
+    let mut doc = v.clone();
+    let plate = doc["scene"]["surfaces"][0].clone();
+    for j in 1..k {
+        let mut p = plate.clone();
+        p["plate"]["name"] = json!(format!("plate{j}"));
+        p["plate"]["top_point_m"] = json!([0.0, 0.0, -0.001 * j as f64]);
+        doc["scene"]["surfaces"]
+            .as_array_mut()
+            .unwrap()
+            .insert(j, p);
+    }
+    doc
+}
+
+fn scenes() -> Vec<(String, PathBuf, Value)> {
+    let mut names: Vec<String> = std::fs::read_dir(cases_dir())
+        .expect("cases/")
+        .filter_map(|e| {
+            let p = e.ok()?.path();
+            let stem = p.file_stem()?.to_str()?.to_string();
+            (p.extension()? == "json" && stem != "schema").then_some(stem)
+        })
+        .collect();
+    names.sort();
+    let mut out: Vec<(String, PathBuf, Value)> = names
+        .iter()
+        .map(|n| {
+            let (f, v) = read(n);
+            (n.clone(), f, v)
+        })
+        .collect();
+    let (paper, _) = read("plate_two_beam_paper");
+    for k in 1..=3 {
+        out.push((format!("{k} stacked plate(s)"), paper.clone(), stacked(k)));
+    }
+    let mut forty = stacked(1);
+    forty["trace"] = json!({ "max_internal_reflections": 40 });
+    out.push(("plate_two_beam_paper, m = 40".into(), paper.clone(), forty));
+    let (airy, mut walk) = read("plate_airy_s");
+    walk["trace"] = json!({ "max_internal_reflections": 2000 });
+    walk["probe"]["sweep"]["count"] = json!(200);
+    out.push(("plate_airy_s, m = 2000, 200 angles".into(), airy, walk));
+    out
+}
+
+fn main() {
+    // `cargo bench` passes `--bench`; a first argument that is not an option filters the scenes.
+    let filter = std::env::args().skip(1).find(|a| !a.starts_with('-'));
+    println!(
+        "rate: {SECONDS_PER_WORK_UNIT:.2e} CPU-s per work unit; cap {MAX_PATH_EVENTS:.0e} units"
+    );
+    println!(
+        "| scene | work units | estimate (CPU-s) | measured CPU-s | wall s | measured / estimate |"
+    );
+    println!("| --- | --- | --- | --- | --- | --- |");
+    for (name, file, doc) in scenes() {
+        if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
+            continue;
+        }
+        let text = serde_json::to_string_pretty(&doc).unwrap();
+        let case = load::parse(&file, &text).expect("valid case");
+        let units = match run::preflight(&case) {
+            Ok(u) => u,
+            Err(e) => {
+                println!("| {name} | refused: {} | | | | |", e.message);
+                continue;
+            }
+        };
+        let estimate = units * SECONDS_PER_WORK_UNIT;
+        let (c0, t0) = (cpu_seconds(), Instant::now());
+        let result = run::run(&case).expect("the case runs");
+        let (cpu, wall) = (cpu_seconds() - c0, t0.elapsed().as_secs_f64());
+        std::hint::black_box(result);
+        println!(
+            "| {name} | {units:.2e} | {estimate:.3} | {cpu:.2} | {wall:.2} | {:.2} |",
+            cpu / estimate
+        );
+    }
+}
