@@ -11,7 +11,7 @@
 //! The machine is shared (2 cores): run it when nothing else is busy, or the 2-thread numbers
 //! measure the other load.
 //!
-//! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench --bench accumulate`
+//! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench -p fringe-benches --bench accumulate`
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use fringe::accumulate::{

@@ -22,7 +22,7 @@
 //!   plate needs), for the constant plate and for N-BK7 (Sellmeier). `traced_once_2t`: 16
 //!   such spectra (angles 20°–50°) on a 2-thread pool.
 //!
-//! Run: `cargo bench --bench airy`
+//! Run: `cargo bench -p fringe-benches --bench airy`
 
 #[path = "../tests/suite/support/airy_plate.rs"]
 mod airy_plate;

@@ -7,8 +7,8 @@
 //! Run (Linux only):
 //!
 //! ```text
-//! cargo run --release --example cpu_rates -- accumulate   # 1 M contributions, 16 k points, 4 groups
-//! cargo run --release --example cpu_rates -- spectrum     # traced Airy spectrum, 401 λ
+//! cargo bench -p fringe-benches --bench cpu_rates -- accumulate # 1 M contributions, 16 k points, 4 groups
+//! cargo bench -p fringe-benches --bench cpu_rates -- spectrum # traced Airy spectrum, 401 λ
 //! ```
 //!
 //! Each line: what, repetitions, wall seconds, CPU seconds, and the rate per wall second and
