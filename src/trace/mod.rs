@@ -276,7 +276,7 @@ fn hit_at(scene: &Scene, optics: &SceneOptics, ev: Event, point: DVec3) -> Inter
 }
 
 /// After a tunnel event at `point` (the ray arrived along `u_in`): the ray leaves from the foot
-/// of the normal on the layer's far face ([`path::tunnel_exit`], the point the path solver
+/// of the normal on the layer's far face (`path::tunnel_exit`, the point the path solver
 /// starts the next segment from), with no optical path for the jump (all of the layer's phase
 /// is in its t_layer, docs/PHYSICS.md §5). Nothing for any other event.
 #[inline]

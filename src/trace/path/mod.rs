@@ -52,7 +52,7 @@ pub enum EventKind {
     /// the surface is lit beyond its critical angle, and the evanescent field in the layer
     /// behind it (`crate::scene::Scene::layer_behind`) launches a wave from the layer's far face
     /// into the medium beyond. The event's point is the hit point on the lit face; the next
-    /// segment starts at the foot of the normal through it on the far face ([`tunnel_exit`]),
+    /// segment starts at the foot of the normal through it on the far face (`tunnel_exit`),
     /// with no optical path in between (all of the layer's phase is in its t_layer).
     Tunnel,
 }

@@ -249,7 +249,7 @@ fn point_work(
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
 /// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
 /// spectral samples; the bounce-convergence report of monochrome Airy cases adds its ladder of
-/// budgets ([`CONVERGENCE_ORDERS`]) at up to 24 of the points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
+/// budgets (`CONVERGENCE_ORDERS`) at up to 24 of the points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
 /// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     let spec = &case.spec;
