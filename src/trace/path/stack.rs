@@ -426,6 +426,10 @@ pub(super) fn parallel_stack_launch(
         }
         _ => target_along,
     };
+    // Each height once (a double-double distance, with a square root for a normal not exactly
+    // unit): the walk below takes every one twice.
+    let z: Vec<DoubleDouble> = (0..=seq.len() + 1).map(z).collect();
+    let z = |k: usize| z[k];
     // Walk the segments: the direction along ν (it flips at reflections only) and the index
     // (it changes at refractions only), exactly as `trace_planes` finds them for any launch;
     // anything it would reject is left to the general solver and its error.
