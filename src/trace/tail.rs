@@ -4,9 +4,10 @@
 //! Between two parallel faces X and Y every further round trip multiplies the s and p
 //! amplitudes of the last traced order a_N by the same factor q_σ = A_σ e^{2πi ΔS/λ}, with
 //! A_σ = r_σ(X) r_σ(Y) the two internal Fresnel coefficients the tracer applied (its own ledger)
-//! and ΔS the optical path of one round trip (the difference of the traced optical paths of
-//! orders N and N − 1, in double-double). Orders N + 1, N + 2, … sum to a_N q_σ/(1 − q_σ) per
-//! σ: one extra arrival ([`TailClosure`] on [`Arrival::tail`]) that stands for infinitely many.
+//! and ΔS = 2 n d cos θ the optical path of one round trip (in double-double from the faces'
+//! distance and the carried (n cos θ)², not the difference of two traced paths: see `close`).
+//! Orders N + 1, N + 2, … sum to a_N q_σ/(1 − q_σ) per σ: one extra arrival ([`TailClosure`]
+//! on [`Arrival::tail`]) that stands for infinitely many.
 //!
 //! Conditioning: near grazing incidence 1 − |q| ~ 1e-9, so 1 − q is never formed from q. It is
 //! (1 − |A|) + |A|(1 − e^{iψ}), with 1 − |A|² from Stokes' relations (4 Re(x ȳ)/|x + y|² for
@@ -422,8 +423,16 @@ pub fn close(
             let dir = v.dir;
             let s = crate::optics::fresnel::s_of_plane_of_incidence(dir, nx)
                 .unwrap_or_else(|| dir.any_orthonormal_vector());
+            // One round trip's optical path: 2 d n cos θ inside (d the film's thickness, n cos θ
+            // from the carried q², both double-double), the difference of the traced paths of
+            // orders N and N − 1 without its rounding. That difference is of two paths of
+            // metres near grazing incidence, each a few u of its own length off, and the sum
+            // divides its error by |1 − q|: films 1e-10° below the critical angle of their top
+            // face (|1 − q| ~ 1e-4, round-trip segments of 0.3 m in a 1 µm film) were closed
+            // 7.5e-7 off 50 digits (`fringe fuzz --family airy --seed 1`, scenes 77, 203).
+            let round_trip_path = film_thickness(scene) * q2_at(n_in).sqrt() * 2.0;
             let closure = TailClosure {
-                round_trip_path: v.optical_path - p.vector.optical_path,
+                round_trip_path,
                 s,
                 p: dir.cross(s),
                 vector,
@@ -442,4 +451,18 @@ pub fn close(
     let n = added.len();
     arrivals.extend(added);
     Ok(n)
+}
+
+/// The distance (m) between the two parallel faces of the scene (`close` has checked there are
+/// exactly two, with normals on one line), in double-double from the planes as held: the
+/// signed distances of one point from both, along each plane's own N/|N|.
+fn film_thickness(scene: &Scene) -> DoubleDouble {
+    let (x, y) = (&scene.surfaces[0].plane, &scene.surfaces[1].plane);
+    let o = x.anchor;
+    let (sx, sy) = (x.signed_distance_dd(o), y.signed_distance_dd(o));
+    if x.normal == y.normal {
+        (sy - sx).abs()
+    } else {
+        (sy + sx).abs()
+    }
 }

@@ -79,3 +79,27 @@ fn frustrated_film_reflectances_hold_against_50_digits() {
     }
     assert!(bad.is_empty(), "{bad:#?}");
 }
+
+/// Films lit 1e-10°–1° below the critical angle of their top face (fuzz `airy` seed 1, shrunk
+/// scenes 77, 108, 117, 203): the wave inside grazes the film, |r21| ≈ 1 − 2e-6, and the tail
+/// beyond the cap is closed (docs/PHYSICS.md §5a) with |1 − q| ~ 1e-4. The closure's round trip
+/// 2 d n cos θ is formed from the carried q² and the faces' distance; taken as the difference of
+/// two traced paths of metres it was a few u of the paths off, which the sum divides by
+/// |1 − q|: 77, 108 and 117 were 8.8e-10, 5.1e-7 and 5.4e-10 off the closed form, which these 50 digits confirm to
+/// 1e-15 (`tools/below_critical_closure_mpmath.py`, tests/data/below_critical_closure_mpmath.csv).
+/// Scene 203 (n = 1 film in n = 3, 1e-10° below critical) is still 7e-9 off, from another
+/// source not yet found: it is not asserted here, and the fuzz gate still fails it.
+#[test]
+fn below_critical_tails_close_from_the_carried_round_trip() {
+    let truth = crate::support::mpmath_profiles("below_critical_closure_mpmath.csv");
+    assert_eq!(truth.len(), 4);
+    let mut bad = Vec::new();
+    for (name, values) in &truth {
+        let err = crate::support::traced_error(name, values);
+        println!("{name}: traced vs 50 digits {err:e}");
+        if name != "fuzz_airy_s1_203" && (err.is_nan() || err > 1e-11) {
+            bad.push(format!("{name}: err {err:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
