@@ -14,12 +14,15 @@
 //! Each line: what, repetitions, wall seconds, CPU seconds, and the rate per wall second and
 //! per CPU-second. The numpy baseline of the accumulation is `examples/accumulate_numpy.py`.
 
+mod accumulation_data;
+use accumulation_data::data;
+
 #[path = "../tests/suite/support/airy_plate.rs"]
 #[allow(dead_code)] // `airy_plate` (n = 1.5) is not used here
 mod airy_plate;
 
 use airy_plate::airy_plate_of;
-use fringe::accumulate::{Contribution, Summation, accumulate_points, accumulate_points_par};
+use fringe::accumulate::{Summation, accumulate_points, accumulate_points_par};
 use fringe::harness::analytic::plate::{Film, Pol};
 use fringe::optics::material::Medium;
 use fringe::scene::Scene;
@@ -27,7 +30,6 @@ use fringe::trace::beats::{Beats, vector_rays};
 use fringe::trace::path::{EnumerationLimits, Target};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
-use num_complex::Complex64;
 use std::hint::black_box;
 use std::time::Instant;
 
@@ -63,40 +65,10 @@ fn measure(what: &str, reps: usize, items: usize, mut work: impl FnMut()) {
     );
 }
 
-/// SplitMix64, the generator of `benches/accumulate.rs` (same data).
-struct SplitMix(u64);
-impl SplitMix {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-}
-
 fn accumulate() {
     let (t, p, g) = (1usize << 20, 1usize << 14, 4u64);
-    let mut r = SplitMix(1);
-    let d: Vec<Contribution> = (0..t)
-        .map(|_| {
-            let id = 1 + r.next_u64() % g;
-            let phase = 1e6 * r.unit();
-            let mut f = [Complex64::default(); 3];
-            for c in &mut f {
-                *c = Complex64::new(2.0 * r.unit() - 1.0, 2.0 * r.unit() - 1.0);
-            }
-            Contribution {
-                coherence_id: id,
-                phase_cycles: phase,
-                field: f,
-            }
-        })
-        .collect();
-    let offsets: Vec<usize> = (0..=p).map(|k| k * t / p).collect();
+    // The data of `benches/accumulate.rs`'s T1M_P16k_G4.
+    let (d, offsets) = data(t, p, g, 1);
     let mut out = vec![0.0; p];
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)

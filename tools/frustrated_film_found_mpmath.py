@@ -25,17 +25,23 @@ mp.mp.dps = 50
 SCENES = [6, 55, 80, 119]
 
 
-def main():
+def print_profiles(scenes, check=lambda case: None):
+    """case,point,value rows of the found airy scenes `scenes` (seed 1): `airy_case` at every
+    probe point times the source's intensity; `check(case)` may assert what the scene must be."""
     print("case,point,value")
-    for index in SCENES:
+    for index in scenes:
         name = f"fuzz_airy_s1_{index}"
         case = json.load(open(os.path.join(FOUND, name + ".json")))
-        assert "unpolarized" in case["scene"]["sources"][0]["polarization"]
+        check(case)
         intensity = mp.mpf(case["scene"]["sources"][0]["intensity"])
         for k, v in enumerate(airy_case(case)):
             v *= intensity
             print(f"{name},{k},{mp.nstr(v, 30)}")
 
 
+def unpolarized(case):
+    assert "unpolarized" in case["scene"]["sources"][0]["polarization"]
+
+
 if __name__ == "__main__":
-    main()
+    print_profiles(SCENES, unpolarized)

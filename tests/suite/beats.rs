@@ -37,8 +37,9 @@ fn ray() -> impl Strategy<Value = SpectralContribution> {
         )
 }
 
-/// The accumulation core's intensity of `rays` at `lambda`.
-fn core(rays: &[SpectralContribution], lambda: f64) -> f64 {
+/// The accumulation core's intensity of `rays` at `lambda` (compensated sums; also the
+/// reference of `spectrum_batch`).
+pub(crate) fn core(rays: &[SpectralContribution], lambda: f64) -> f64 {
     let mut acc = Accumulator::new();
     for r in rays {
         acc.add_parts(

@@ -5,24 +5,11 @@
 //! wavelengths with one phasor batch per distinct ray phase), for grids longer than one block
 //! and for rays that share phases across coherence groups in any order.
 
-use fringe::accumulate::Accumulator;
+use crate::beats::core;
 use fringe::optics::ray::Field3;
 use fringe::trace::beats::{Beats, SpectralContribution};
 use num_complex::Complex64;
 use proptest::prelude::*;
-
-/// The accumulation core's intensity of `rays` at `lambda` (compensated sums).
-fn core(rays: &[SpectralContribution], lambda: f64) -> f64 {
-    let mut acc = Accumulator::new();
-    for r in rays {
-        acc.add_parts(
-            r.coherence_id,
-            r.delta_s_m / lambda + r.extra_cycles,
-            &r.field,
-        );
-    }
-    acc.intensity()
-}
 
 /// (Σ_k |E_k|)², the scale of every cross term and of the rounding of any order of summation.
 fn scale(rays: &[SpectralContribution]) -> f64 {
