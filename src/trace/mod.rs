@@ -814,19 +814,63 @@ pub fn phase_cycles(path: DoubleDouble, reference: DoubleDouble, lambda_m: f64) 
     (c - DoubleDouble::from(c.hi.round())).to_f64()
 }
 
+/// The path phases of one arrival in cycles ([`phase_cycles`]), measured from one reference
+/// optical path: its `vector` ray's and, where traced, its `paper_rules` ray's. Every rung of
+/// the ladder (docs/PHYSICS.md §4) starts from the same exact path, so the rungs share these
+/// two numbers: the double-double reduction is done once per arrival, not once per rung.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct ArrivalCycles {
+    /// The `vector` ray's phase (cycles); also the phase of the scalar rungs.
+    pub vector: f64,
+    /// The `paper_rules` ray's phase (cycles); `None` where the arrival was traced without
+    /// the paper's rules or the rung is not asked for.
+    pub paper: Option<f64>,
+}
+
+impl ArrivalCycles {
+    /// The phases of `a` from `reference` (m, double-double); the paper ray's only when
+    /// `with_paper` (it is the `vector` one, bit for bit, where the two rays carry the same
+    /// optical path and wavelength).
+    pub fn of(a: &Arrival, reference: DoubleDouble, with_paper: bool) -> Self {
+        let v = &a.vector;
+        let vector = phase_cycles(v.optical_path, reference, v.wavelength_m);
+        let paper = a.paper.as_ref().filter(|_| with_paper).map(|p| {
+            if p.optical_path == v.optical_path && p.wavelength_m == v.wavelength_m {
+                vector
+            } else {
+                phase_cycles(p.optical_path, reference, p.wavelength_m)
+            }
+        });
+        ArrivalCycles { vector, paper }
+    }
+
+    /// The paper ray's phase; panics where it was not reduced (`with_paper` false).
+    fn paper(&self) -> f64 {
+        self.paper
+            .expect("paper_rules asked of ArrivalCycles reduced without the paper ray's phase")
+    }
+}
+
 /// The accumulation-core contribution of an arrival at a rung of the ladder, with its path
 /// phase measured from the optical path `reference` (m, double-double): the difference is
 /// formed in double-double and only then rounded and divided by λ, so a path of any length
 /// keeps its phase relative to the reference to ~1e-16 of the difference (docs/PHYSICS.md §1).
 pub fn contribution_from(a: &Arrival, level: Fidelity, reference: DoubleDouble) -> Contribution {
+    let cycles = ArrivalCycles::of(a, reference, level == Fidelity::PaperRules);
+    contribution_with(a, level, &cycles)
+}
+
+/// [`contribution_from`] with the arrival's phases already reduced ([`ArrivalCycles::of`],
+/// with the paper ray's phase for `paper_rules`): what a loop over the rungs calls, the same
+/// contribution bit for bit.
+pub fn contribution_with(a: &Arrival, level: Fidelity, cycles: &ArrivalCycles) -> Contribution {
     if let Some(t) = &a.tail {
-        return tail_contribution(a, t, level, reference);
+        return tail_contribution(a, t, level, cycles);
     }
     let v = &a.vector;
-    let cycles = |r: &Ray| phase_cycles(r.optical_path, reference, r.wavelength_m);
     let scalar = |extra_cycles: f64| Contribution {
         coherence_id: v.coherence_id,
-        phase_cycles: cycles(v) + extra_cycles,
+        phase_cycles: cycles.vector + extra_cycles,
         field: [
             Complex64::from(v.intensity().sqrt()),
             Complex64::default(),
@@ -844,41 +888,40 @@ pub fn contribution_from(a: &Arrival, level: Fidelity, reference: DoubleDouble) 
             let paper = a.paper.as_ref().expect(PAPER_MISSING);
             Contribution {
                 coherence_id: paper.coherence_id,
-                phase_cycles: cycles(paper),
+                phase_cycles: cycles.paper(),
                 field: paper.field(),
             }
         }
         Fidelity::Vector => Contribution {
             coherence_id: v.coherence_id,
-            phase_cycles: cycles(v),
+            phase_cycles: cycles.vector,
             field: v.field(),
         },
     }
 }
 
-/// [`contribution_from`] of an arrival standing for a closed tail (docs/PHYSICS.md §5a): the
+/// [`contribution_with`] of an arrival standing for a closed tail (docs/PHYSICS.md §5a): the
 /// sum of the orders beyond the traced one it carries, under the level's own model.
 fn tail_contribution(
     a: &Arrival,
     t: &tail::TailClosure,
     level: Fidelity,
-    reference: DoubleDouble,
+    cycles: &ArrivalCycles,
 ) -> Contribution {
     let v = &a.vector;
-    let cycles = |r: &Ray| phase_cycles(r.optical_path, reference, r.wavelength_m);
     let e = v.field();
     let scalar = |jump: bool, extra_cycles: f64| {
         let f = t.scalar_factor(&e, jump, v.wavelength_m) * v.intensity().sqrt();
         Contribution {
             coherence_id: v.coherence_id,
-            phase_cycles: cycles(v) + extra_cycles,
+            phase_cycles: cycles.vector + extra_cycles,
             field: [f, Complex64::default(), Complex64::default()],
         }
     };
     match level {
         Fidelity::Incoherent => Contribution {
             coherence_id: INCOHERENT,
-            phase_cycles: cycles(v),
+            phase_cycles: cycles.vector,
             field: [
                 Complex64::from(t.incoherent_intensity(&e).sqrt()),
                 Complex64::default(),
@@ -891,13 +934,13 @@ fn tail_contribution(
             let paper = a.paper.as_ref().expect(PAPER_MISSING);
             Contribution {
                 coherence_id: paper.coherence_id,
-                phase_cycles: cycles(paper),
+                phase_cycles: cycles.paper(),
                 field: t.field(&paper.field(), level, paper.wavelength_m).0,
             }
         }
         Fidelity::Vector => Contribution {
             coherence_id: v.coherence_id,
-            phase_cycles: cycles(v),
+            phase_cycles: cycles.vector,
             field: t.field(&e, level, v.wavelength_m).0,
         },
     }

@@ -370,6 +370,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
     let mut center = 0.0;
     let mut acc = Accumulator::new();
     let mut contributions = Vec::new();
+    let mut cycles = Vec::new();
     let (built, internal) = trace_point(case, pt, |built, spectrum, sample| {
         let Sample {
             index: k,
@@ -382,12 +383,24 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
         // `trace::intensity` of each level, with the accumulator and contributions reused
         // (the same sums: a cleared accumulator is a new one).
         let reference = arr.first().map(|a| a.vector.optical_path);
+        // Every rung starts from the same paths: each arrival's phase is reduced once
+        // (`trace::ArrivalCycles`), and the rungs take their contributions from it.
+        cycles.clear();
+        if let Some(r) = reference {
+            let with_paper = levels.contains(&Fidelity::PaperRules);
+            cycles.extend(
+                arr.iter()
+                    .map(|a| trace::ArrivalCycles::of(a, r, with_paper)),
+            );
+        }
         let mut vector_intensity = None;
         for l in levels {
             contributions.clear();
-            if let Some(r) = reference {
-                contributions.extend(arr.iter().map(|a| trace::contribution_from(a, *l, r)));
-            }
+            contributions.extend(
+                arr.iter()
+                    .zip(&cycles)
+                    .map(|(a, c)| trace::contribution_with(a, *l, c)),
+            );
             acc.clear();
             acc.extend(&contributions);
             let i = acc.intensity();
