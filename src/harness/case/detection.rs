@@ -192,27 +192,41 @@ struct FaultRay {
     x: DVec3,
     y: DVec3,
     chosen: bool,
+    /// The unfaulted phase, cycles from the first ray's optical path ([`crate::trace::phase_cycles`]),
+    /// and the unfaulted field: what every evaluation of the bisection reuses for the rays the
+    /// fault does not touch.
+    cycles: f64,
+    field: crate::optics::ray::Field3,
 }
 
 /// The arrivals of one spectral sample as [`faulted_intensity`] needs them.
 fn fault_rays(arrivals: &[Arrival]) -> Vec<FaultRay> {
     let chosen = chosen_path(arrivals);
+    let reference = arrivals
+        .first()
+        .map_or(DoubleDouble::ZERO, |a| a.vector.optical_path);
     arrivals
         .iter()
-        .map(|a| FaultRay {
-            coherence_id: a.vector.coherence_id,
-            optical_path: a.vector.optical_path,
-            wavelength_m: a.vector.wavelength_m,
+        .map(|a| {
             // A closed Airy tail (docs/PHYSICS.md §5a): the Jones vector of the orders it
             // stands for, in its ray's frame.
-            jones: a.tail.as_ref().map_or(a.vector.jones, |t| {
+            let jones = a.tail.as_ref().map_or(a.vector.jones, |t| {
                 let (e, _) = t.field(&a.vector.field(), Fidelity::Vector, a.vector.wavelength_m);
                 let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
                 [dot(a.vector.x), dot(a.vector.y)]
-            }),
-            x: a.vector.x,
-            y: a.vector.y,
-            chosen: Some(std::sync::Arc::as_ptr(&a.path)) == chosen,
+            });
+            let v = &a.vector;
+            FaultRay {
+                coherence_id: v.coherence_id,
+                optical_path: v.optical_path,
+                wavelength_m: v.wavelength_m,
+                jones,
+                x: v.x,
+                y: v.y,
+                chosen: Some(std::sync::Arc::as_ptr(&a.path)) == chosen,
+                cycles: crate::trace::phase_cycles(v.optical_path, reference, v.wavelength_m),
+                field: field_of(jones, v.x, v.y),
+            }
         })
         .collect()
 }
@@ -235,16 +249,30 @@ fn faulted_intensity(
         op
     };
     let reference = rays.first().map_or(DoubleDouble::ZERO, path);
+    // A phase fault on the first ray moves the reference of every phase; otherwise only the
+    // chosen rays' phases and fields differ from the unfaulted ones (`FaultRay::cycles`,
+    // `FaultRay::field`, the same arithmetic).
+    let moved_reference =
+        matches!(fault, Fault::Phase(_)) && rays.first().is_some_and(|r| r.chosen);
     scratch.clear();
     scratch.extend(rays.iter().map(|r| {
-        let jones = match (r.chosen, fault) {
-            (true, Fault::Amplitude(e)) => [r.jones[0] * (1.0 + e), r.jones[1] * (1.0 + e)],
-            _ => r.jones,
+        let field = match (r.chosen, fault) {
+            (true, Fault::Amplitude(e)) => {
+                field_of([r.jones[0] * (1.0 + e), r.jones[1] * (1.0 + e)], r.x, r.y)
+            }
+            _ => r.field,
+        };
+        let phase_cycles = match (r.chosen, fault) {
+            (true, Fault::Phase(_)) => {
+                crate::trace::phase_cycles(path(r), reference, r.wavelength_m)
+            }
+            _ if moved_reference => crate::trace::phase_cycles(path(r), reference, r.wavelength_m),
+            _ => r.cycles,
         };
         Contribution {
             coherence_id: r.coherence_id,
-            phase_cycles: crate::trace::phase_cycles(path(r), reference, r.wavelength_m),
-            field: field_of(jones, r.x, r.y),
+            phase_cycles,
+            field,
         }
     }));
     acc.clear();
