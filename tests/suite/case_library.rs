@@ -716,3 +716,20 @@ fn schema_rejects_every_bad_case_whose_shape_serde_rejects() {
     );
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
+
+/// A case run measures its detection floors on the arrivals it traced itself (`run::run` keeps
+/// the sampled points' arrivals): the floors equal those of a fresh trace of the same points
+/// (`detection::detection_floors`), for a two-beam point-source case, a spectral case (Gaussian
+/// light, 129 wavelengths per point) and an Airy case.
+#[test]
+fn a_runs_detection_floors_are_those_of_a_fresh_trace() {
+    use fringe::harness::case::detection;
+    for name in ["plate_two_beam_paper", "coherence_length", "plate_airy_s"] {
+        let case = load::load(&root().join("cases").join(format!("{name}.json"))).unwrap();
+        let r = run::run(&case).unwrap();
+        let fresh = detection::detection_floors(&case, &r).unwrap();
+        println!("{name}: run {:?}, fresh trace {fresh:?}", r.detection);
+        assert!(r.detection.is_some(), "{name}: no floors measured");
+        assert_eq!(r.detection, fresh, "{name}");
+    }
+}

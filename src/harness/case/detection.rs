@@ -63,32 +63,25 @@ pub(crate) enum Fault {
 
 /// The arrivals of one probe point at every spectral sample: (weight × observable factor,
 /// arrivals).
-type PointArrivals = Vec<(f64, Vec<Arrival>)>;
+pub(crate) type PointArrivals = Vec<(f64, Vec<Arrival>)>;
+
+/// The probe points (indices, ascending) the floors are measured on: at most [`MAX_POINTS`],
+/// spread evenly over `n` points.
+pub(crate) fn sampled_points(n: usize) -> Vec<usize> {
+    let stride = n.div_ceil(MAX_POINTS).max(1);
+    (0..n).step_by(stride).collect()
+}
 
 /// The floors of a case's primary reference, for intensity references with a `vector`
 /// tolerance (`None` for spacing, retardance and visibility references: one path's phase or
-/// amplitude does not enter them the same way).
+/// amplitude does not enter them the same way), tracing the points [`sampled_points`] names
+/// again; a case run measures them on its own arrivals ([`floors_of_traced`]).
 pub fn detection_floors(
     case: &Case,
     result: &CaseResult,
 ) -> Result<Option<DetectionFloors>, CaseError> {
-    let Some(primary) = result.metrics.first() else {
-        return Ok(None);
-    };
-    let Some(&tolerance) = primary.tolerances.get(&Fidelity::Vector) else {
-        return Ok(None);
-    };
-    if primary.kind != MetricKind::Intensity || !primary.traced.contains_key(&Fidelity::Vector) {
-        return Ok(None);
-    }
-    let scale = primary
-        .analytic
-        .iter()
-        .fold(1e-15f64, |m, a| m.max(a.abs()));
     let points = build::probe_points(&case.spec.probe);
-    let stride = points.len().div_ceil(MAX_POINTS).max(1);
-    let sampled: Vec<usize> = (0..points.len()).step_by(stride).collect();
-    let traced: Vec<PointArrivals> = sampled
+    let traced: Vec<PointArrivals> = sampled_points(points.len())
         .par_iter()
         .map(|&i| {
             let mut per_lambda = Vec::new();
@@ -99,6 +92,31 @@ pub fn detection_floors(
             Ok(per_lambda)
         })
         .collect::<Result<_, CaseError>>()?;
+    Ok(floors_of_traced(result, traced))
+}
+
+/// [`detection_floors`] on arrivals already traced: `traced` holds, for the points
+/// [`sampled_points`] names and in that order, every spectral sample's weight × observable
+/// factor and arrivals, as `run::trace_point` gives them.
+pub(crate) fn floors_of_traced(
+    result: &CaseResult,
+    traced: Vec<PointArrivals>,
+) -> Option<DetectionFloors> {
+    let primary = result.metrics.first()?;
+    let &tolerance = primary.tolerances.get(&Fidelity::Vector)?;
+    if primary.kind != MetricKind::Intensity || !primary.traced.contains_key(&Fidelity::Vector) {
+        return None;
+    }
+    let scale = primary
+        .analytic
+        .iter()
+        .fold(1e-15f64, |m, a| m.max(a.abs()));
+    let sampled = sampled_points(primary.analytic.len());
+    assert_eq!(
+        traced.len(),
+        sampled.len(),
+        "one traced point per sampled point"
+    );
     let coherent = traced.iter().flatten().any(|(_, arr)| interfere(arr));
     // What a fault touches, taken from the arrivals once (the bisection evaluates the
     // deviation ~80 times).
@@ -113,7 +131,10 @@ pub fn detection_floors(
         .collect();
     drop(traced);
     let analytic: Vec<f64> = sampled.iter().map(|&i| primary.analytic[i]).collect();
-    let deviation = |fault: Fault| -> f64 {
+    // Whether `fault` fails the gate: some sampled point deviates by more than the tolerance
+    // (the largest deviation exceeds it; a NaN deviation counts as neither). The search stops
+    // at the first such point.
+    let caught_by = |fault: Fault| -> bool {
         faultable
             .par_iter()
             .zip(&analytic)
@@ -124,14 +145,14 @@ pub fn detection_floors(
                         .iter()
                         .map(|(w, rays)| w * faulted_intensity(rays, fault, acc, scratch))
                         .sum();
-                    (value - a).abs() / scale
+                    (value - a).abs() / scale > tolerance
                 },
             )
-            .reduce(|| 0.0, f64::max)
+            .any(|caught| caught)
     };
     let floor = |make: fn(f64) -> Fault| -> Floor {
         // Log-bisection for the smallest ε in [1e-16, 1] that is caught.
-        let caught = |e: f64| deviation(make(e)) > tolerance;
+        let caught = |e: f64| caught_by(make(e));
         if !caught(1.0) {
             return Floor::Blind;
         }
@@ -151,13 +172,13 @@ pub fn detection_floors(
     };
     if scale <= 1e-12 {
         let why = "the closed form vanishes everywhere (an extinction case)";
-        return Ok(Some(DetectionFloors {
+        return Some(DetectionFloors {
             phase_rad: Floor::NotApplicable(why),
             amplitude: Floor::NotApplicable(why),
             tolerance,
-        }));
+        });
     }
-    Ok(Some(DetectionFloors {
+    Some(DetectionFloors {
         phase_rad: if coherent {
             floor(Fault::Phase)
         } else {
@@ -165,7 +186,7 @@ pub fn detection_floors(
         },
         amplitude: floor(Fault::Amplitude),
         tolerance,
-    }))
+    })
 }
 
 /// The chosen path of a fault: the path carrying the second-largest intensity (the weaker of

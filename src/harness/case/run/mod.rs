@@ -206,6 +206,9 @@ struct PointOut {
     /// probe beyond the critical angle): dark by physics, T = 0.
     evanescent: bool,
     internal: usize,
+    /// Kept for the detection floors (`keep`): every spectral sample's weight × observable
+    /// factor and arrivals (`detection::floors_of_traced`).
+    kept: Vec<(f64, Vec<Arrival>)>,
 }
 
 fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
@@ -352,7 +355,14 @@ pub(super) fn trace_point(
     Ok((built, internal))
 }
 
-fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointOut, CaseError> {
+/// Trace one probe point at every level; `keep`: also hand back every sample's arrivals
+/// ([`PointOut::kept`]).
+fn run_point(
+    case: &Case,
+    pt: &ProbePoint,
+    levels: &[Fidelity],
+    keep: bool,
+) -> Result<PointOut, CaseError> {
     let spec = &case.spec;
     let mut out = PointOut {
         intensity: levels.iter().map(|l| (*l, 0.0)).collect(),
@@ -364,7 +374,9 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
         arrivals: 0,
         evanescent: false,
         internal: 0,
+        kept: Vec::new(),
     };
+    let mut kept = Vec::new();
     let mut center_arrivals = Vec::new();
     let mut center_target = None;
     let mut center = 0.0;
@@ -378,7 +390,7 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             weight: w,
             target,
             factor,
-            arrivals: arr,
+            arrivals: mut arr,
         } = sample;
         // `trace::intensity` of each level, with the accumulator and contributions reused
         // (the same sums: a cleared accumulator is a new one).
@@ -495,7 +507,11 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
         if k == spectrum.len() / 2 {
             out.arrivals = arr.len();
             out.needs = trace::needs(&arr);
-            center_arrivals = arr;
+            center_arrivals = if keep {
+                arr.clone()
+            } else {
+                std::mem::take(&mut arr)
+            };
             // Dark by physics: no transmitted wave, or a film beyond its top face's critical
             // angle whose transmittance is negligible (frustrated total reflection).
             out.evanescent = target.is_none()
@@ -506,9 +522,13 @@ fn run_point(case: &Case, pt: &ProbePoint, levels: &[Fidelity]) -> Result<PointO
             center_target = target;
             center = lambda;
         }
+        if keep {
+            kept.push((w * factor, arr));
+        }
         Ok(())
     })?;
     out.internal = internal;
+    out.kept = kept;
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
     // The centre sample's target: the metrics below need a propagating wave there.
     let centre_target = || {
@@ -579,9 +599,16 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
     // Every point's result in probe order, then the first error by probe index: rayon's
     // `collect` into a Result returns whichever failing point finished first, so the reason a
     // case is refused would depend on thread scheduling.
+    // The points the detection floors sample keep their arrivals: the floors are measured on
+    // the very arrivals traced here, not on a second trace of them.
+    let sampled = super::detection::sampled_points(points.len());
     let outs: Vec<PointOut> = points
         .par_iter()
-        .map(|pt| run_point(case, pt, &levels))
+        .enumerate()
+        .map(|(i, pt)| {
+            let keep = convergence_report && sampled.binary_search(&i).is_ok();
+            run_point(case, pt, &levels, keep)
+        })
         .collect::<Vec<_>>()
         .into_iter()
         .collect::<Result<_, _>>()?;
@@ -679,7 +706,13 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
     };
     if convergence_report {
         result.convergence = convergence(case, &points)?;
-        result.detection = super::detection::detection_floors(case, &result)?;
+        let traced = outs
+            .into_iter()
+            .enumerate()
+            .filter(|(i, _)| sampled.binary_search(i).is_ok())
+            .map(|(_, o)| o.kept)
+            .collect();
+        result.detection = super::detection::floors_of_traced(&result, traced);
     }
     Ok(result)
 }
