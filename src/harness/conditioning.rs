@@ -21,8 +21,9 @@
 //!   does not feel it to first order (Fermat; the offset across the plane is corrected,
 //!   `Plane::off_plane_path_correction`), but the launch that lands the path on its target
 //!   from such a point tilts by up to u X/ℓ (ℓ the path's length), and with it every incidence
-//!   cosine: each event's Fresnel coefficient moves by κ_e C u X/ℓ relative, κ_e = |∂coef/∂cos θ|
-//!   / |coef| of that event ([`fresnel_sensitivity`]). A 1 µm Lloyd source 100 m from the
+//!   cosine: each event's Fresnel coefficient moves by up to its change over θ ± C u X/ℓ,
+//!   relative ([`tilt_change`]; ≈ κ_e C u X/ℓ, κ_e = |∂coef/∂cos θ| / |coef| of
+//!   [`fresnel_sensitivity`], away from critical angles). A 1 µm Lloyd source 100 m from the
 //!   origin, 1 cm from its screen, has u X/ℓ = 1.1e-12 (the tracer's incidence cosine was
 //!   6.7e-12 off, `fringe fuzz --family lloyd --seed 1`, scene 218): no f64 hit point does
 //!   better, and a scene near the origin has X ≤ ℓ.

@@ -85,8 +85,13 @@ fn near_critical_closed_form_against_50_digits() {
     }
 }
 
-/// The tracer at the origin: within the gate's least tolerance (1e-12) of 50 digits, and
-/// within what its arithmetic allows (`CaseResult::rounding`, absolute) at every point.
+/// The tracer at the origin: within what its arithmetic allows (`CaseResult::rounding`,
+/// absolute) of 50 digits at every point, and passed by the gate. Six of the eight are within
+/// 1e-15 of 50 digits; #4659 (1.2e-7 beyond the critical angle under a 10 mm plate) 3e-13 and
+/// #5397 (4.2e-8 below it) 1.6e-10: there one ulp of h_s + h_o alone moves the exact I by
+/// 8.3e-11 (`tools/two_beam_plate_near_critical_mpmath.py`), so f64 hit points at 2e-5 m
+/// cannot do better; the old closed form, which took h_s + h_o and x as f64 sums, agreed with
+/// the tracer to 1e-15 there and was as far off 50 digits: the gate could not see it.
 #[test]
 fn near_critical_scenes_at_the_origin_trace_as_50_digits() {
     let truth = truth();
@@ -97,17 +102,15 @@ fn near_critical_scenes_at_the_origin_trace_as_50_digits() {
         let exact = &truth[&name];
         let dev = relative(traced, exact);
         println!("{name}: traced {dev:.2e} off 50 digits");
-        assert!(dev <= 1e-12, "{name}: traced {dev:e} off 50 digits");
         for ((t, m), b) in traced.iter().zip(exact).zip(&r.rounding) {
+            println!("  |{t:e} − {m:e}| = {:.2e}, bound {b:.2e}", (t - m).abs());
             assert!((t - m).abs() <= *b, "{name}: |{t:e} − {m:e}| > bound {b:e}");
         }
-        assert!(
-            matches!(
-                judge(&case_json(&name), &found(&name)),
-                Verdict::Pass { .. }
-            ),
-            "{name}"
-        );
+        if ![4659, 5397].contains(&n) {
+            assert!(dev <= 1e-14, "{name}: traced {dev:e} off 50 digits");
+        }
+        let v = judge(&case_json(&name), &found(&name));
+        assert!(matches!(v, Verdict::Pass { .. }), "{name}: {v:?}");
     }
 }
 
