@@ -21,8 +21,9 @@
 //!   does not feel it to first order (Fermat; the offset across the plane is corrected,
 //!   `Plane::off_plane_path_correction`), but the launch that lands the path on its target
 //!   from such a point tilts by up to u X/ℓ (ℓ the path's length), and with it every incidence
-//!   cosine: each event's Fresnel coefficient moves by κ_e C u X/ℓ relative, κ_e = |∂coef/∂cos θ|
-//!   / |coef| of that event ([`fresnel_sensitivity`]). A 1 µm Lloyd source 100 m from the
+//!   cosine: each event's Fresnel coefficient moves by up to its change over θ ± C u X/ℓ,
+//!   relative ([`tilt_change`]; ≈ κ_e C u X/ℓ, κ_e = |∂coef/∂cos θ| / |coef| of
+//!   [`fresnel_sensitivity`], away from critical angles). A 1 µm Lloyd source 100 m from the
 //!   origin, 1 cm from its screen, has u X/ℓ = 1.1e-12 (the tracer's incidence cosine was
 //!   6.7e-12 off, `fringe fuzz --family lloyd --seed 1`, scene 218): no f64 hit point does
 //!   better, and a scene near the origin has X ≤ ℓ.
@@ -132,6 +133,82 @@ pub fn layer_sensitivity(
     slope / (hi - lo) / size
 }
 
+/// The relative change of the coefficients of event `kind` (as [`layer_sensitivity`]: s and p,
+/// the larger, over the larger |coef|) when the incident direction `d_in` turns by `tilt` rad
+/// within its plane of incidence, either way: max over ± of |coef(θ ± tilt) − coef(θ)|. The
+/// secant over the turn itself, not `tilt` times a derivative taken over a fixed step: within
+/// a few 1e-7 of a critical angle the coefficients go as sqrt(cos²θt) (docs/PHYSICS.md §5), a
+/// ±1e-6 difference of cos θi averages that singularity away, and the tilt of the event points
+/// of a scene translated 10 m moved the tracer's intensity 15× further than tilt × the
+/// difference quotient (fuzz `two_beam_plate` seed 1 scene 4441: 1.4 over 0.001 at 2.6e-7 below
+/// the top face's critical angle, tilt 2e-11 rad, 1.8e-5 of I;
+/// `tests/suite/truth_point_sources.rs`). sin θ and cos θ are turned separately and
+/// cos²θt = (n2² − n1² sin²θ)/n2² is formed from sin θ with exact squares, so near normal
+/// incidence (cos θi = 1 − 2.5e-7 there) the turn is resolved. 0 where [`layer_sensitivity`]
+/// is (mirrors, splitters, equal indices) and for `tilt` = 0.
+pub fn tilt_change(
+    optics: SurfaceOptics,
+    kind: EventKind,
+    normal: DVec3,
+    d_in: DVec3,
+    n_in: f64,
+    layer: Option<Layer>,
+    tilt: f64,
+) -> f64 {
+    let SurfaceOptics::Dielectric { .. } = optics else {
+        return 0.0;
+    };
+    let (n1, n2) = indices_for(optics, normal, d_in, n_in);
+    if n1 == n2 || tilt <= 0.0 {
+        return 0.0;
+    }
+    // Coefficients at (cos θi, sin θi), both in [0, 1].
+    let coefficients = |c: f64, s: f64| {
+        let q2_i = two_prod(n1 * c, n1 * c);
+        let n1s = n1 * s;
+        let q2_t = two_prod(n2, n2) - two_prod(n1s, n1s);
+        let f = fresnel::fresnel_with_cos2_t(n1, n2, c, (q2_t.to_f64()) / (n2 * n2));
+        match (kind, layer) {
+            (EventKind::Reflect | EventKind::Tunnel, Some(l)) if f.total_internal_reflection => {
+                let q2_3 = two_prod(l.n_beyond, l.n_beyond) - two_prod(n1s, n1s);
+                let fl = fresnel::frustrated_layer(
+                    (n1, n2, l.n_beyond),
+                    (q2_i, q2_t, q2_3),
+                    l.thickness_m,
+                    l.lambda_m,
+                );
+                if kind == EventKind::Tunnel {
+                    fl.t
+                } else {
+                    [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
+                }
+            }
+            (EventKind::Tunnel, _) => [Complex64::from(0.0); 2],
+            (EventKind::Reflect, _) => [f.r_s, f.r_p],
+            (EventKind::Refract, _) => [f.t_s, f.t_p],
+        }
+    };
+    let len = d_in.length() * normal.length();
+    let c = (d_in.dot(normal).abs() / len).min(1.0);
+    let s = (d_in.cross(normal).length() / len).min(1.0);
+    let here = coefficients(c, s);
+    let size = here.iter().fold(0.0f64, |m, z| m.max(z.norm()));
+    if size == 0.0 {
+        return 0.0;
+    }
+    let (ct, st) = (tilt.cos(), tilt.sin());
+    let turned = |sign: f64| {
+        // θ ± tilt, clamped to [0, π/2].
+        let s2 = (s * ct + sign * c * st).clamp(0.0, 1.0);
+        let c2 = (c * ct - sign * s * st).clamp(0.0, 1.0);
+        let there = coefficients(c2, s2);
+        here.iter()
+            .zip(there)
+            .fold(0.0f64, |m, (a, b)| m.max((b - a).norm()))
+    };
+    turned(1.0).max(turned(-1.0)) / size
+}
+
 /// The bound (module docs) on the rounding error of the `vector` intensity of `arrivals` at
 /// vacuum wavelength `lambda_m`, phases referred to the optical path `reference` (the first
 /// arrival's, as the traced value refers them), in the units of the traced |E|². `scene` and
@@ -193,7 +270,7 @@ pub fn intensity_rounding(
             };
             let normal = scene.surfaces[ev.surface].plane.normal;
             let layer = optics.layers[ev.surface][usize::from(d_in.dot(normal) >= 0.0)];
-            da += tilt * layer_sensitivity(so, ev.kind, normal, *d_in, n_in, layer);
+            da += tilt_change(so, ev.kind, normal, *d_in, n_in, layer, tilt);
         }
         let term = e * (dphi + da);
         if c.coherence_id == INCOHERENT {

@@ -589,27 +589,42 @@ pub struct Beam {
 impl TwoBeamPlate {
     /// Beam 1: reflection at the top face (image method): tan θ = x/(h_s + h_o).
     pub fn beam_top(&self, x_m: f64) -> Beam {
-        let h = self.h_src_m + self.h_obs_m;
-        let theta = x_m.atan2(h);
+        self.beam_top_held(&self.held(x_m))
+    }
+
+    /// sin²θ = x²/(x² + h²), h = h_s + h_o, of the top beam of the `held` points, double-double.
+    fn top_sin_sq(held: &HeldPoints) -> TwoFloat {
+        let h = held.h_src_m + held.h_obs_m;
+        let x = held.x_m;
+        precise::div(x * x, x * x + h * h)
+    }
+
+    /// [`TwoBeamPlate::beam_top`] between the `held` points: lateral distance and heights in
+    /// double-double, not their f64 roundings. Within 1e-7 of the top face's critical angle
+    /// cos²θt = 1 − (n1/n2)² sin²θ is ~1e-7 and one rounding of x moves it by 1e-9 of itself
+    /// (fuzz `two_beam_plate` seed 1 scene 4659, a 10 mm plate of n 0.001 under n 3 at 1.2e-7
+    /// beyond it: I was 3e-13 off 50 digits from the f64 x, `tests/suite/truth_point_sources.rs`).
+    fn beam_top_held(&self, held: &HeldPoints) -> Beam {
+        let h = held.h_src_m + held.h_obs_m;
+        let x = held.x_m;
+        let (x_m, h_m) = (x.hi(), h.hi());
+        let theta = x_m.atan2(h_m);
         // cos θ = h/√(x² + h²) keeps its relative precision near grazing, where cos(atan2)
         // loses it (an absolute error of 1e-16 on cos θ ≈ 1e-4).
+        let cos_i = f64::from(precise::div(h, (x * x + h * h).sqrt()));
         // cos²θt = 1 − (n1/n2)² x²/(x² + h²) in double-double: near the critical angle, and
         // beyond it where r12 = e^{iφ} is the total reflection of an ambient denser than the
         // plate, an f64 cos²θt cancels (docs/PHYSICS.md §5).
         let f = if self.n1 == self.n2 {
-            fresnel(self.n1, self.n2, h / x_m.hypot(h))
+            fresnel(self.n1, self.n2, cos_i)
         } else {
-            let sin_sq = precise::div(
-                TwoFloat::new_mul(x_m, x_m),
-                TwoFloat::new_mul(x_m, x_m) + TwoFloat::new_mul(h, h),
-            );
             let ratio = precise::div(TwoFloat::from(self.n1), TwoFloat::from(self.n2));
-            let c2t = TwoFloat::from(1.0) - sin_sq * ratio * ratio;
-            fresnel_with_cos2_t(self.n1, self.n2, h / x_m.hypot(h), f64::from(c2t))
+            let c2t = TwoFloat::from(1.0) - Self::top_sin_sq(held) * ratio * ratio;
+            fresnel_with_cos2_t(self.n1, self.n2, cos_i, f64::from(c2t))
         };
         Beam {
             theta,
-            optical_path_m: self.n1 * x_m.hypot(h),
+            optical_path_m: self.n1 * x_m.hypot(h_m),
             amp_s: f.r_s,
             amp_p: f.r_p,
         }
@@ -621,14 +636,15 @@ impl TwoBeamPlate {
     /// Airy sum with imaginary cos θ2, [`Film::r`], frustrated total reflection,
     /// docs/PHYSICS.md §5) instead of the face's r12; elsewhere [`TwoBeamPlate::beam_top`].
     pub fn beam_top_frustrated(&self, x_m: f64, lambda_m: f64) -> Beam {
-        let beam = self.beam_top(x_m);
-        let h = self.h_src_m + self.h_obs_m;
-        let sin_sq = precise::div(
-            TwoFloat::new_mul(x_m, x_m),
-            TwoFloat::new_mul(x_m, x_m) + TwoFloat::new_mul(h, h),
-        );
+        self.beam_top_frustrated_held(&self.held(x_m), lambda_m)
+    }
+
+    /// [`TwoBeamPlate::beam_top_frustrated`] between the `held` points
+    /// ([`TwoBeamPlate::beam_top_held`]).
+    fn beam_top_frustrated_held(&self, held: &HeldPoints, lambda_m: f64) -> Beam {
+        let beam = self.beam_top_held(held);
         let inc = Incidence {
-            cos_sq: TwoFloat::from(1.0) - sin_sq,
+            cos_sq: TwoFloat::from(1.0) - Self::top_sin_sq(held),
         };
         let layer = Film {
             n1: self.n1,
@@ -865,9 +881,8 @@ impl TwoBeamPlate {
 
     /// The two models: the p cross term with cos(θ1 − θ2) to the power `p_overlap_power`.
     fn unpolarized(&self, held: &HeldPoints, lambda_m: f64, p_overlap_power: i32) -> f64 {
-        let x_m = held.x_m.hi();
         let (b1, (b2, op2)) = (
-            self.beam_top_frustrated(x_m, lambda_m),
+            self.beam_top_frustrated_held(held, lambda_m),
             self.beam_bottom_precise(held),
         );
         let h = held.h_src_m + held.h_obs_m;
