@@ -137,7 +137,7 @@ fn translated_near_critical_scenes_are_bounded_and_refused() {
         println!("{name}: {v:?}");
         match v {
             Verdict::Refused { reason } => assert!(
-                reason.contains("f64 event points resolve it only to"),
+                reason.contains("which resolves this scene only"),
                 "{name}: {reason}"
             ),
             Verdict::Pass { deviation } => {

@@ -284,10 +284,10 @@ pub fn beyond_resolution(
     let bound = derived? + representation;
     (bound > stated + representation && deviation <= bound).then(|| {
         format!(
-            "$.probe: the scene's f64 event points resolve it only to {bound:.1e} of the profile \
-             (one rounding of a hit point's coordinates tilts the incidence angles, \
-             docs/PHYSICS.md §8), beyond the case's tolerance {stated:e}: deviation \
-             {deviation:.1e} cannot be judged"
+            "$.probe: the tracer holds its event points in f64, which resolves this scene only \
+             to {bound:.1e} of the profile (one rounding of a hit point's coordinates tilts \
+             the incidence angles, docs/PHYSICS.md §8), beyond the case's tolerance \
+             {stated:e}: deviation {deviation:.1e} cannot be judged (a tracer limit, not a pass)"
         )
     })
 }
