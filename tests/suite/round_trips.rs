@@ -97,6 +97,10 @@ fn film_scene(
     (scene, target)
 }
 
+/// Media above, inside and below a film; its thickness (m); the index of the transmitted
+/// target's medium, `None` for the reflected one.
+type Stack = ((Medium, Medium, Medium), f64, Option<f64>);
+
 fn settings(m: usize) -> TraceSettings {
     TraceSettings {
         limits: EnumerationLimits {
@@ -123,7 +127,7 @@ fn round_trips_equal_the_general_walk() {
     let mut worst_path = 0.0f64;
     let mut worst_i = 0.0f64;
     // (media, thickness, transmitted-into index)
-    let stacks: Vec<((Medium, Medium, Medium), f64, Option<f64>)> = vec![
+    let stacks: Vec<Stack> = vec![
         ((v(), c(1.7), v()), 3.217e-6, None),
         ((v(), c(1.7), v()), 3.217e-6, Some(1.0)),
         ((v(), bk7(), v()), 2e-6, None),
