@@ -20,8 +20,9 @@
 //! Where it applies (anything else is refused with the reason; the caller then runs the general
 //! walk): far-field targets (a direction); plane-wave sources of infinite coherence length;
 //! scenes of exactly two unbounded dielectric interfaces whose normals are the same line
-//! (bitwise ±), no traced order tunnelling through a layer; the deepest traced order of each source ending in
-//! a round trip between the faces followed only by refractions. Only the `vector` model.
+//! (bitwise ±), no traced order tunnelling through a layer; the deepest traced order of each
+//! source ending in a round trip between the faces followed only by refractions. Only the
+//! `vector` model.
 //!
 //! [`spectrum`] gives the intensity spectrum of one far-field direction: for non-dispersive
 //! media one trace and [`Beats::intensities`]; for dispersive media (Sellmeier, Cauchy, …) a
