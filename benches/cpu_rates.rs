@@ -22,13 +22,14 @@ use accumulation_data::data;
 mod airy_plate;
 
 use airy_plate::airy_plate_of;
+use fringe::accumulate::fidelity::Fidelity;
 use fringe::accumulate::{Summation, accumulate_points, accumulate_points_par};
 use fringe::harness::analytic::plate::{Film, Pol};
-use fringe::optics::material::Medium;
+use fringe::optics::material::{Dispersion, Medium};
 use fringe::scene::Scene;
 use fringe::trace::beats::{Beats, vector_rays};
 use fringe::trace::path::{EnumerationLimits, Target};
-use fringe::trace::{self, TraceSettings};
+use fringe::trace::{self, TraceSettings, round_trips};
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Instant;
@@ -145,6 +146,112 @@ fn spectrum() {
             black_box(&out);
         },
     );
+    // The same spectrum by round trips (`trace::round_trips::spectrum`: the first orders
+    // traced by the walk, every further one by one exactly applied round trip).
+    let probes = [DVec3::new(0.0, 0.0, 0.001)];
+    measure("airy/spectrum round_trips", 2000, lambdas.len(), || {
+        round_trips::spectrum(
+            &scene, &probes, &target, &st, &lambdas, &mut beats, &mut out,
+        )
+        .expect("indices");
+        black_box(&out);
+    });
+    let optics = scene.optics(mid).expect("indices");
+    measure(
+        "airy/spectrum round_trips trace only",
+        2000,
+        lambdas.len(),
+        || {
+            black_box(round_trips::rays(&scene, &optics, &probes, &target, &st).expect("applies"));
+        },
+    );
+    // 16 spectra (angles 20°–50°) on two threads, as `airy/spectrum/traced_once_2t_16_spectra`.
+    let spectra: Vec<(Scene, Target, TraceSettings)> = (0..16)
+        .map(|k| {
+            let th = (20.0 + 2.0 * k as f64).to_radians();
+            let (s, t) = airy_plate_of(th, Medium::constant("glass", 1.7), D);
+            (s, t, spectrum_settings(th, 1.7, D, mid))
+        })
+        .collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("rayon pool");
+    let sixteen = |route: bool| {
+        use rayon::prelude::*;
+        pool.install(|| {
+            spectra
+                .par_iter()
+                .map_init(
+                    || (Beats::default(), vec![0.0; lambdas.len()]),
+                    |(beats, out), (s, t, st)| {
+                        if route {
+                            round_trips::spectrum(s, &probes, t, st, &lambdas, beats, out)
+                                .expect("indices");
+                        } else {
+                            let optics = s.optics(mid).expect("indices");
+                            let plan = trace::plan(s, &optics, &probes, &st.limits);
+                            let arr = trace::arrivals(s, &optics, &plan, t, st).0;
+                            beats.set(&vector_rays(&arr));
+                            beats.intensities(&lambdas, out);
+                        }
+                        out[0]
+                    },
+                )
+                .sum::<f64>()
+        })
+    };
+    measure(
+        "airy/spectrum 16 spectra 2t walk",
+        200,
+        16 * lambdas.len(),
+        || {
+            black_box(sixteen(false));
+        },
+    );
+    measure(
+        "airy/spectrum 16 spectra 2t round_trips",
+        200,
+        16 * lambdas.len(),
+        || {
+            black_box(sixteen(true));
+        },
+    );
+    // N-BK7 (Sellmeier): a trace at every wavelength, by the general walk and by round trips.
+    let bk7 = Medium {
+        name: "N-BK7".into(),
+        dispersion: Dispersion::bk7(),
+    };
+    let st_bk7 = spectrum_settings(theta, bk7.index(mid).expect("index"), D, mid);
+    let (scene_bk7, target_bk7) = airy_plate_of(theta, bk7, D);
+    measure(
+        "airy/spectrum bk7 per_wavelength walk",
+        3,
+        lambdas.len(),
+        || {
+            for (&l, o) in lambdas.iter().zip(out.iter_mut()) {
+                let optics = scene_bk7.optics(l).expect("indices");
+                let plan = trace::plan(&scene_bk7, &optics, &probes, &st_bk7.limits);
+                let arr = trace::arrivals(&scene_bk7, &optics, &plan, &target_bk7, &st_bk7).0;
+                *o = trace::intensity(&arr, Fidelity::Vector);
+            }
+            black_box(&out);
+        },
+    );
+    measure("airy/spectrum bk7 round_trips", 30, lambdas.len(), || {
+        let route = round_trips::spectrum(
+            &scene_bk7,
+            &probes,
+            &target_bk7,
+            &st_bk7,
+            &lambdas,
+            &mut beats,
+            &mut out,
+        )
+        .expect("indices");
+        assert_eq!(route, round_trips::Route::RoundTrips);
+        black_box(&out);
+    });
 }
 
 fn main() {

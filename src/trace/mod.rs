@@ -10,6 +10,7 @@
 pub mod beats;
 pub mod forward;
 pub mod path;
+pub mod round_trips;
 pub mod sequence_tree;
 pub mod tail;
 

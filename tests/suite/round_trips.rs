@@ -1,0 +1,449 @@
+//! Round trips (`trace::round_trips`): the orders of a plane wave between two parallel faces,
+//! each further order the one before after one exactly applied round trip, must be the orders
+//! the general far-field walk traces (`trace::arrivals`), ray by ray and in intensity to 1e-14,
+//! for several wavelengths, order counts, angles, s/p/unpolarized light, reflected and
+//! transmitted, free-standing plates and films on substrates; a dispersive (N-BK7, Sellmeier)
+//! spectrum must match the Airy closed form (B&W §7.6.1, evaluated by `Film`, not the tracer)
+//! to 1e-12 at every wavelength; and wherever the round trips do not hold (point targets,
+//! point sources, non-parallel faces, a third surface, finite coherence length) the general
+//! walk must run.
+
+use fringe::accumulate::Accumulator;
+use fringe::accumulate::fidelity::Fidelity;
+use fringe::harness::analytic::plate::{Film, Pol};
+use fringe::optics::material::{Dispersion, Medium};
+use fringe::scene::Scene;
+use fringe::scene::geometry::{Extent, Plane, Rect};
+use fringe::scene::source::{Emitter, Polarization, Source};
+use fringe::scene::{Surface, SurfaceKind};
+use fringe::trace::beats::Beats;
+use fringe::trace::path::{EnumerationLimits, Target};
+use fringe::trace::round_trips::{self, Route};
+use fringe::trace::{self, TraceSettings};
+use glam::DVec3;
+
+const PROBES: [DVec3; 1] = [DVec3::new(0.0, 0.0, 0.001)];
+
+fn bk7() -> Medium {
+    Medium {
+        name: "N-BK7".into(),
+        dispersion: Dispersion::bk7(),
+    }
+}
+
+#[derive(Clone, Copy, Debug)]
+enum Light {
+    S,
+    P,
+    Unpolarized,
+}
+
+/// A film (`film` top face at z = 0, normal +z) between `above` and `below`, lit from above
+/// at `theta` in the x–z plane, observed in the far field: the specular reflection, or the
+/// transmitted direction into `below` (index `n_below` there).
+fn film_scene(
+    theta: f64,
+    (above, film, below): (Medium, Medium, Medium),
+    thickness_m: f64,
+    light: Light,
+    transmitted: Option<f64>,
+) -> (Scene, Target) {
+    let mut scene = Scene::new(above.clone());
+    scene.add_plate(
+        "film",
+        DVec3::ZERO,
+        DVec3::Z,
+        thickness_m,
+        above,
+        film,
+        below,
+    );
+    let (s, c) = theta.sin_cos();
+    let polarization = match light {
+        Light::S => Polarization::Linear {
+            reference: DVec3::Y,
+            angle_rad: 0.0,
+        },
+        Light::P => Polarization::Linear {
+            reference: DVec3::X,
+            angle_rad: 0.0,
+        },
+        Light::Unpolarized => Polarization::Unpolarized,
+    };
+    scene.sources.push(Source {
+        name: "beam".into(),
+        emitter: Emitter::PlaneWave {
+            direction: DVec3::new(s, 0.0, -c),
+            reference_point: DVec3::new(0.0, 0.0, 0.001),
+        },
+        polarization,
+        intensity: 1.0,
+        coherence_group: 0,
+        coherence_length_m: f64::INFINITY,
+    });
+    let target = match transmitted {
+        None => Target::Direction {
+            dir: DVec3::new(s, 0.0, c),
+            reference: DVec3::new(0.0, 0.0, 0.001),
+        },
+        Some(n_below) => {
+            let s3 = s / n_below;
+            Target::Direction {
+                dir: DVec3::new(s3, 0.0, -(1.0 - s3 * s3).sqrt()),
+                reference: DVec3::new(0.0, 0.0, -0.001),
+            }
+        }
+    };
+    (scene, target)
+}
+
+/// Media above, inside and below a film; its thickness (m); the index of the transmitted
+/// target's medium, `None` for the reflected one.
+type Stack = ((Medium, Medium, Medium), f64, Option<f64>);
+
+fn settings(m: usize) -> TraceSettings {
+    TraceSettings {
+        limits: EnumerationLimits {
+            max_internal_reflections: m,
+            max_events: 2 * m + 8,
+        },
+        ..TraceSettings::default()
+    }
+}
+
+fn walk(scene: &Scene, lambda: f64, target: &Target, st: &TraceSettings) -> Vec<trace::Arrival> {
+    let optics = scene.optics(lambda).unwrap();
+    let plan = trace::plan(scene, &optics, &PROBES, &st.limits);
+    trace::arrivals(scene, &optics, &plan, target, st).0
+}
+
+/// Every case: the round-trip rays against the general walk's, ray by ray, and the intensity.
+#[test]
+fn round_trips_equal_the_general_walk() {
+    let c = |n: f64| Medium::constant("m", n);
+    let v = Medium::vacuum;
+    let mut cases = 0;
+    let mut worst_field = 0.0f64;
+    let mut worst_path = 0.0f64;
+    let mut worst_i = 0.0f64;
+    // (media, thickness, transmitted-into index)
+    let stacks: Vec<Stack> = vec![
+        ((v(), c(1.7), v()), 3.217e-6, None),
+        ((v(), c(1.7), v()), 3.217e-6, Some(1.0)),
+        ((v(), bk7(), v()), 2e-6, None),
+        // Films on substrates: a low-index film on glass, a high-index film on glass.
+        ((v(), c(1.38), c(1.52)), 0.41e-6, None),
+        ((v(), c(1.38), c(1.52)), 0.41e-6, Some(1.52)),
+        ((v(), c(2.3), c(1.52)), 1.3e-6, None),
+        ((v(), c(2.3), c(1.52)), 1.3e-6, Some(1.52)),
+    ];
+    for (media, d, transmitted) in &stacks {
+        for theta_deg in [0.5, 35.0, 72.0] {
+            for light in [Light::S, Light::P, Light::Unpolarized] {
+                for m in [9usize, 27, 60] {
+                    for lambda in [400e-9, 550e-9, 800e-9] {
+                        let theta = f64::to_radians(theta_deg);
+                        let (scene, target) =
+                            film_scene(theta, media.clone(), *d, light, *transmitted);
+                        let st = settings(m);
+                        let optics = scene.optics(lambda).unwrap();
+                        let mut fast = round_trips::rays(&scene, &optics, &PROBES, &target, &st)
+                            .unwrap_or_else(|e| {
+                                panic!("{media:?} {theta_deg}° {light:?}: refused: {e}")
+                            });
+                        let arrivals = walk(&scene, lambda, &target, &st);
+                        let mut general = round_trips::far_field_rays(&arrivals);
+                        // The same rays, compared by optical path (the walk's depth-first order
+                        // and the round trips' order differ; the order of a sum only moves its
+                        // rounding, which the intensity check below bounds).
+                        let key = |r: &round_trips::FarFieldRay| {
+                            (r.optical_path.hi, r.optical_path.lo, r.coherence_id)
+                        };
+                        fast.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+                        general.sort_by(|a, b| key(a).partial_cmp(&key(b)).unwrap());
+                        let what = format!(
+                            "n {:?}, d {d:e}, {theta_deg}°, {light:?}, m {m}, λ {lambda:e}, \
+                             transmitted {transmitted:?}",
+                            optics.surfaces
+                        );
+                        assert_eq!(fast.len(), general.len(), "{what}: ray count");
+                        assert!(general.len() >= 2, "{what}: orders arrive");
+                        let scale = general
+                            .iter()
+                            .flat_map(|r| r.field.iter().map(|x| x.norm()))
+                            .fold(0.0f64, f64::max);
+                        for (k, (f, g)) in fast.iter().zip(&general).enumerate() {
+                            assert_eq!(f.coherence_id, g.coherence_id, "{what}: ray {k} id");
+                            let de = (0..3)
+                                .map(|i| (f.field[i] - g.field[i]).norm())
+                                .fold(0.0f64, f64::max);
+                            let dp = (f.optical_path - g.optical_path).to_f64().abs();
+                            worst_field = worst_field.max(de / scale);
+                            worst_path = worst_path.max(dp / lambda);
+                            // A few rounding errors per round trip (k ≤ 61 of them).
+                            assert!(
+                                de <= 1e-14 * scale,
+                                "{what}: ray {k}: field off by {de:e} (scale {scale:e})"
+                            );
+                            // The walk's path is traced segment by segment from f64 points;
+                            // ΔS is 2 d n cos θ in double-double: agree to 1e-12 cycles.
+                            assert!(
+                                dp <= 1e-12 * lambda,
+                                "{what}: ray {k}: optical path off by {dp:e} m"
+                            );
+                        }
+                        let i_fast = round_trips::intensity(&fast, lambda, &mut Accumulator::new());
+                        let i_walk = trace::intensity(&arrivals, Fidelity::Vector);
+                        let di = (i_fast - i_walk).abs();
+                        worst_i = worst_i.max(di);
+                        assert!(
+                            di <= 1e-14,
+                            "{what}: intensity {i_fast:e} vs walk {i_walk:e}, err {di:e}"
+                        );
+                        cases += 1;
+                    }
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{cases} cases: worst field {worst_field:e} (relative), path {worst_path:e} cycles, \
+         intensity {worst_i:e}"
+    );
+}
+
+/// The orders for the amplitude tail bound ε at every wavelength of `lambdas` (the most).
+fn internal_for_bound(film_at: impl Fn(f64) -> Film, cos: f64, lambdas: &[f64], eps: f64) -> usize {
+    let orders = lambdas
+        .iter()
+        .flat_map(|&l| [Pol::S, Pol::P].map(|p| film_at(l).orders_for_bound(cos, l, p, eps)))
+        .max()
+        .unwrap();
+    2 * orders + 1
+}
+
+/// N-BK7 (Sellmeier) plate, 3.217 µm, 35°, unpolarized, 401 wavelengths 400–800 nm, traced at
+/// every wavelength by round trips, orders to the tail bound ε = 1e-12: the Airy reflectance
+/// (R_s + R_p)/2 and transmittance (T_s + T_p)/2 with n(λ) from the Sellmeier formula, to 1e-12
+/// at every wavelength.
+#[test]
+fn dispersive_spectrum_matches_airy_bk7() {
+    let theta = 35f64.to_radians();
+    let d = 3.217e-6;
+    let lambdas: Vec<f64> = (0..401).map(|i| 400e-9 + 1e-9 * i as f64).collect();
+    let n_of = |l: f64| bk7().index(l).unwrap();
+    let film_at = |l: f64| Film {
+        n1: 1.0,
+        n2: n_of(l),
+        n3: 1.0,
+        thickness_m: d,
+    };
+    let m = internal_for_bound(film_at, theta.cos(), &lambdas, 1e-12);
+    let st = settings(m);
+    for transmitted in [None, Some(1.0)] {
+        let (scene, target) = film_scene(
+            theta,
+            (Medium::vacuum(), bk7(), Medium::vacuum()),
+            d,
+            Light::Unpolarized,
+            transmitted,
+        );
+        assert!(!round_trips::non_dispersive(&scene));
+        let mut out = vec![0.0; lambdas.len()];
+        let route = round_trips::spectrum(
+            &scene,
+            &PROBES,
+            &target,
+            &st,
+            &lambdas,
+            &mut Beats::default(),
+            &mut out,
+        )
+        .unwrap();
+        assert_eq!(route, Route::RoundTrips);
+        let mut worst = 0.0f64;
+        for (&l, &i) in lambdas.iter().zip(&out) {
+            let f = film_at(l);
+            let airy = match transmitted {
+                None => {
+                    0.5 * (f.reflectance(theta.cos(), l, Pol::S)
+                        + f.reflectance(theta.cos(), l, Pol::P))
+                }
+                Some(_) => {
+                    0.5 * (f.transmittance(theta.cos(), l, Pol::S)
+                        + f.transmittance(theta.cos(), l, Pol::P))
+                }
+            };
+            let err = (i - airy).abs();
+            worst = worst.max(err);
+            assert!(
+                err <= 1e-12,
+                "λ {l:e}, transmitted {transmitted:?}: actual {i:e}, expected {airy:e}, err {err:e}"
+            );
+        }
+        eprintln!("BK7, transmitted {transmitted:?}: max |I − Airy| = {worst:e} (m = {m})");
+    }
+}
+
+/// The non-dispersive plate of `beats::spectrum_traced_once_matches_airy_and_per_wavelength_traces`
+/// through `round_trips::spectrum` (traced once, by round trips): Airy to 1e-12 at all 401
+/// wavelengths.
+#[test]
+fn non_dispersive_spectrum_matches_airy() {
+    let theta = 35f64.to_radians();
+    let film = Film {
+        n1: 1.0,
+        n2: 1.7,
+        n3: 1.0,
+        thickness_m: 3.217e-6,
+    };
+    let lambdas: Vec<f64> = (0..401).map(|i| 400e-9 + 1e-9 * i as f64).collect();
+    let m = internal_for_bound(|_| film, theta.cos(), &lambdas[200..201], 1e-12);
+    let (scene, target) = film_scene(
+        theta,
+        (
+            Medium::vacuum(),
+            Medium::constant("glass", 1.7),
+            Medium::vacuum(),
+        ),
+        film.thickness_m,
+        Light::Unpolarized,
+        None,
+    );
+    let mut out = vec![0.0; lambdas.len()];
+    let route = round_trips::spectrum(
+        &scene,
+        &PROBES,
+        &target,
+        &settings(m),
+        &lambdas,
+        &mut Beats::default(),
+        &mut out,
+    )
+    .unwrap();
+    assert_eq!(route, Route::RoundTrips);
+    for (&l, &i) in lambdas.iter().zip(&out) {
+        let airy = 0.5
+            * (film.reflectance(theta.cos(), l, Pol::S) + film.reflectance(theta.cos(), l, Pol::P));
+        let err = (i - airy).abs();
+        assert!(
+            err <= 1e-12,
+            "λ {l:e}: actual {i:e}, expected {airy:e}, err {err:e}"
+        );
+    }
+}
+
+/// Where the round trips do not hold, `rays` refuses with the reason and `spectrum` runs the
+/// general walk: its values are those of tracing each wavelength with `trace::arrivals`.
+#[test]
+fn general_walk_runs_where_round_trips_do_not_apply() {
+    let theta = 30f64.to_radians();
+    let glass = || Medium::constant("glass", 1.6);
+    let plate = || {
+        film_scene(
+            theta,
+            (Medium::vacuum(), glass(), Medium::vacuum()),
+            2e-6,
+            Light::Unpolarized,
+            None,
+        )
+    };
+    let mut cases: Vec<(&str, Scene, Target)> = Vec::new();
+    // A point target (not the far field).
+    let (s, _) = plate();
+    cases.push((
+        "point target",
+        s,
+        Target::Point(DVec3::new(0.001, 0.0, 0.001)),
+    ));
+    // A point source.
+    let (mut s, t) = plate();
+    s.sources[0].emitter = Emitter::Point {
+        position: DVec3::new(-0.001, 0.0, 0.001),
+    };
+    cases.push(("point source", s, t));
+    // A finite coherence length.
+    let (mut s, t) = plate();
+    s.sources[0].coherence_length_m = 1e-5;
+    cases.push(("finite coherence length", s, t));
+    // Non-parallel faces (a wedge of 1 mrad, N-BK7: traced at every wavelength).
+    let mut s = Scene::new(Medium::vacuum());
+    s.add_wedge(
+        "wedge",
+        DVec3::ZERO,
+        DVec3::Z,
+        2e-6,
+        1e-3,
+        DVec3::Y,
+        Medium::vacuum(),
+        bk7(),
+        Medium::vacuum(),
+    );
+    let (p, t) = plate();
+    s.sources = p.sources;
+    cases.push(("wedge", s, t));
+    // A third surface: a shield beside the beam.
+    let (mut s, t) = plate();
+    s.surfaces.push(Surface {
+        name: "shield".into(),
+        plane: Plane::new(DVec3::new(0.0, 0.0, 0.01), DVec3::Z),
+        extent: Extent::Rect {
+            u: DVec3::X,
+            v: DVec3::Y,
+            rect: Rect {
+                center_uv: [0.05, 0.0],
+                half_width_m: 0.001,
+                half_height_m: 0.001,
+            },
+        },
+        kind: SurfaceKind::Opaque { apertures: vec![] },
+    });
+    cases.push(("shield", s, t));
+    let st = settings(9);
+    let lambdas = [450e-9, 600e-9, 750e-9];
+    for (what, scene, target) in &cases {
+        let optics = scene.optics(550e-9).unwrap();
+        let refused = round_trips::rays(scene, &optics, &PROBES, target, &st);
+        assert!(refused.is_err(), "{what}: round trips must not apply");
+        let mut out = [0.0; 3];
+        let route = round_trips::spectrum(
+            scene,
+            &PROBES,
+            target,
+            &st,
+            &lambdas,
+            &mut Beats::default(),
+            &mut out,
+        )
+        .unwrap();
+        assert!(
+            matches!(route, Route::GeneralWalk(_)),
+            "{what}: route {route:?}"
+        );
+        if round_trips::non_dispersive(scene) {
+            // Traced once at the middle wavelength, evaluated by beat terms: bit for bit the
+            // general walk's traced-once spectrum.
+            let arr = walk(scene, lambdas[1], target, &st);
+            let mut beats = Beats::default();
+            beats.set(&fringe::trace::beats::vector_rays(&arr));
+            let mut want = [0.0; 3];
+            beats.intensities(&lambdas, &mut want);
+            assert_eq!(
+                out.map(f64::to_bits),
+                want.map(f64::to_bits),
+                "{what}: {out:?} vs {want:?}"
+            );
+        } else {
+            // Traced at every wavelength: the walk's intensity (same phases, same sums).
+            for (&l, &i) in lambdas.iter().zip(&out) {
+                let arr = walk(scene, l, target, &st);
+                let want = trace::intensity(&arr, Fidelity::Vector);
+                let err = (i - want).abs();
+                assert!(
+                    err <= 1e-15 * want.abs().max(1.0),
+                    "{what}, λ {l:e}: actual {i:e}, expected {want:e}, err {err:e}"
+                );
+            }
+        }
+    }
+}
