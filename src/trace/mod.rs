@@ -9,7 +9,7 @@
 
 pub mod beats;
 pub mod forward;
-mod parallel_phase;
+pub(crate) mod parallel_phase;
 pub mod path;
 pub mod sequence_tree;
 pub mod tail;
@@ -615,8 +615,6 @@ pub fn arrivals_with(
     for (si, src) in scene.sources.iter().enumerate() {
         let channels = src.channels();
         let mut out = Recorder {
-            scene,
-            emitter: src.emitter,
             source: si,
             channels: &channels,
             target,
@@ -657,10 +655,6 @@ pub fn arrivals_with(
 
 /// Where the arrivals and failures of one source go.
 struct Recorder<'a, 'f> {
-    scene: &'a Scene,
-    /// The source's emitter (a plane wave's far-field phase is formed from it,
-    /// [`parallel_phase::far_field_path`]).
-    emitter: Emitter,
     source: usize,
     channels: &'a [Channel],
     target: &'a Target,
@@ -690,19 +684,6 @@ impl Recorder<'_, '_> {
             paper.emit(channels, self.target, self.coherence_length_m, |k, ray| {
                 found[first + k].paper = Some(ray)
             });
-        }
-        // Between parallel faces, the far-field phase from Snell's invariant, not the sum along
-        // the segments (whose f64 directions put a first-order error in it that grows with the
-        // lateral run: `parallel_phase`).
-        if let Some(phi) =
-            parallel_phase::far_field_path(self.scene, self.emitter, &path, self.target)
-        {
-            for a in &mut found[first..] {
-                a.vector.optical_path = phi;
-                if let Some(p) = &mut a.paper {
-                    p.optical_path = phi;
-                }
-            }
         }
     }
 
