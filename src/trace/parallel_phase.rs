@@ -18,6 +18,9 @@
 //! top face (n = 1 in n = 3, 1 µm, 200 nm; `fuzz_airy_s1_203`) runs 0.64 m sideways per round
 //! trip, and its orders' phases were 8e-17 m of path per round trip off (2.5e-9 rad, ninth
 //! order), which its closed tail (|1 − q| ~ 2e-4) turned into 7e-9 of the reflectance.
+//!
+//! Used where the Airy tail is closed (`tail::close`), on the few orders traced below it; the
+//! far-field walk itself still sums along the segments (this costs O(m) per order).
 
 use crate::optics::double_double::{DoubleDouble, difference};
 use crate::optics::interaction::normal_wavevector_squares;
