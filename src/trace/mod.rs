@@ -9,6 +9,7 @@
 
 pub mod beats;
 pub mod forward;
+pub(crate) mod parallel_phase;
 pub mod path;
 pub mod round_trips;
 pub mod sequence_tree;

@@ -87,8 +87,13 @@ fn frustrated_film_reflectances_hold_against_50_digits() {
 /// two traced paths of metres it was a few u of the paths off, which the sum divides by
 /// |1 − q|: 77, 108 and 117 were 8.8e-10, 5.1e-7 and 5.4e-10 off the closed form, which these 50 digits confirm to
 /// 1e-15 (`tools/below_critical_closure_mpmath.py`, tests/data/below_critical_closure_mpmath.csv).
-/// Scene 203 (n = 1 film in n = 3, 1e-10° below critical) is still 7e-9 off, from another
-/// source not yet found: it is not asserted here, and the fuzz gate still fails it.
+/// Scene 203 (n = 1 film in n = 3, 1e-10° below critical) was still 7.1e-9 off: its closure
+/// was right (A_σ, 1 − |A_σ|² from Stokes and the round trip all agree with 50 digits to
+/// 1e-16), but the phases of the traced orders it rides on were 8.1e-17 m of path per round
+/// trip long (3.142136e-5 instead of 3.142096e-5 cycles), a first-order error of summing along
+/// segments with f64 directions and projecting onto the target's f64 direction while each round
+/// trip runs 0.64 m sideways; the far-field phase between parallel faces is now formed from
+/// Snell's invariant (`trace::parallel_phase`), and 203 is 5e-16 off.
 #[test]
 fn below_critical_tails_close_from_the_carried_round_trip() {
     let truth = crate::support::mpmath_profiles("below_critical_closure_mpmath.csv");
@@ -97,7 +102,58 @@ fn below_critical_tails_close_from_the_carried_round_trip() {
     for (name, values) in &truth {
         let err = crate::support::traced_error(name, values);
         println!("{name}: traced vs 50 digits {err:e}");
-        if name != "fuzz_airy_s1_203" && (err.is_nan() || err > 1e-11) {
+        if err.is_nan() || err > 1e-11 {
+            bad.push(format!("{name}: err {err:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+/// Scenes of `fringe fuzz --family airy --seed 1 --count 10000` lit 1e-9°…1e-7° beyond the
+/// critical angle of the film's top face (reflected and transmitted, with and without a
+/// substrate, films 0.35 nm … 1.9 mm in ambient n = 0.67 … 4.0), refused as "the Airy tail bound
+/// needs more internal reflections than the cap …, and the tail cannot be closed exactly: no
+/// order with an internal reflection reached the probe" (transmitted) or "the deepest traced
+/// sequence (1 events) does not end in a round trip" (reflected). Diagnosis: the budget
+/// (`case::run::budget`) sends a point to the frustrated-film rule only beyond a margin of
+/// 1e-12 n1² in (n2 cos θ2)², so that no rounding puts the tracer on the other side; inside it
+/// the point goes to the tail rule, but the tracer itself reflects totally into the frustrated
+/// layer, whose coefficients are the whole Airy sum, and no order enters the film. The closure
+/// now asks the tracer's own verdict at the face the wave meets first and closes nothing there.
+const NEAR_CRITICAL_FRUSTRATED_SCENES: [usize; 23] = [
+    183, 335, 344, 667, 1658, 1777, 1873, 2370, 2707, 3080, 3136, 3381, 3456, 5323, 5606, 5618,
+    6878, 7138, 7188, 7374, 8148, 8834, 9171,
+];
+
+/// Those scenes are judged, not refused, and pass the gate against the `airy` closed form.
+#[test]
+fn near_critical_frustrated_scenes_are_judged_not_refused() {
+    let mut bad = Vec::new();
+    for index in NEAR_CRITICAL_FRUSTRATED_SCENES {
+        let scene = fuzz::scene(Family::Airy, 1, index, None);
+        let case = scene.case.expect("a generated case");
+        let verdict = fuzz::judge(&case, Path::new(&format!("near_critical_{index}.json")));
+        if !matches!(verdict, Verdict::Pass { .. }) {
+            bad.push(format!("scene {index} {:?}: {verdict:?}", scene.tags));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+/// Five of them (unpolarized; case files `tests/fuzz_found/fuzz_airy_s1_<index>.json`, the
+/// generator's own output; scene 1658's first point is below the critical angle and its tail is
+/// closed) against 50-digit Airy sums from their binary64 inputs
+/// (`tools/near_critical_frustrated_mpmath.py`, tests/data/near_critical_frustrated_mpmath.csv):
+/// within 1e-12 of each profile's largest value.
+#[test]
+fn near_critical_frustrated_films_hold_against_50_digits() {
+    let truth = crate::support::mpmath_profiles("near_critical_frustrated_mpmath.csv");
+    assert_eq!(truth.len(), 5);
+    let mut bad = Vec::new();
+    for (name, values) in &truth {
+        let err = crate::support::traced_error(name, values);
+        println!("{name}: traced vs 50 digits {err:e}");
+        if err.is_nan() || err > 1e-12 {
             bad.push(format!("{name}: err {err:e}"));
         }
     }
