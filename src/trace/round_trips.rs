@@ -29,11 +29,12 @@
 //! trace at every wavelength, each by round trips where they apply.
 
 use super::beats::{Beats, SpectralContribution};
+use super::tail::{film_thickness, last_two_reflections};
 use super::{Arrival, TraceSettings, arrivals_with, phase_cycles, plan};
 use crate::accumulate::Accumulator;
 use crate::optics::double_double::{DoubleDouble, two_prod};
 use crate::optics::material::{Dispersion, IndexError, Medium};
-use crate::optics::ray::{Field3, LedgerEntry, Ray};
+use crate::optics::ray::Field3;
 use crate::scene::geometry::Extent;
 use crate::scene::source::Emitter;
 use crate::scene::{Scene, SceneOptics, SurfaceKind};
@@ -66,9 +67,9 @@ fn refuse<T>(msg: impl Into<String>) -> Result<T, NotApplicable> {
 pub struct FarFieldRay {
     /// Coherence id; 0 adds intensity only.
     pub coherence_id: u64,
-    /// Optical path to the far-field wavefront (m), double-double ([`Ray::optical_path`]).
+    /// Optical path to the far-field wavefront (m), double-double ([`crate::optics::ray::Ray::optical_path`]).
     pub optical_path: DoubleDouble,
-    /// Complex 3D field amplitude, path phase excluded ([`Ray::field`]).
+    /// Complex 3D field amplitude, path phase excluded ([`crate::optics::ray::Ray::field`]).
     pub field: Field3,
 }
 
@@ -166,32 +167,6 @@ fn check_scene(scene: &Scene, target: &Target) -> Result<DVec3, NotApplicable> {
         return refuse("the faces are not parallel (further orders are not the same round trip)");
     }
     Ok(nx)
-}
-
-/// The last two reflection coefficients (r_s, r_p) a ray's ledger records, in order.
-fn last_two_reflections(ray: &Ray) -> Option<[(Complex64, Complex64); 2]> {
-    let mut last = None;
-    let mut before = None;
-    for e in ray.ledger.entries.iter() {
-        if let LedgerEntry::Reflection { r_s, r_p, .. } = e {
-            before = last;
-            last = Some((*r_s, *r_p));
-        }
-    }
-    Some([before?, last?])
-}
-
-/// The distance (m) between the two parallel faces, in double-double from the planes as held
-/// (the signed distances of one point from both, along each plane's own normal).
-fn film_thickness(scene: &Scene) -> DoubleDouble {
-    let (x, y) = (&scene.surfaces[0].plane, &scene.surfaces[1].plane);
-    let o = x.anchor;
-    let (sx, sy) = (x.signed_distance_dd(o), y.signed_distance_dd(o));
-    if x.normal == y.normal {
-        (sy - sx).abs()
-    } else {
-        (sy + sx).abs()
-    }
 }
 
 /// One source's deepest traced order (per channel) and the round trip that makes the next one.

@@ -209,25 +209,18 @@ fn refuse<T>(msg: impl Into<String>) -> Result<T, NotClosable> {
     Err(NotClosable(msg.into()))
 }
 
-/// The last two reflection coefficients (r_s, r_p) a ray's ledger records.
-fn last_two_reflections(ray: &Ray) -> Option<[(Complex64, Complex64); 2]> {
-    let mut found = Vec::with_capacity(2);
-    for e in ray
-        .ledger
-        .entries
-        .iter()
-        .collect::<Vec<_>>()
-        .into_iter()
-        .rev()
-    {
+/// The last two reflection coefficients (r_s, r_p) a ray's ledger records, in order (the
+/// round trip's A_σ = r_σ(X) r_σ(Y); also [`super::round_trips`]).
+pub(crate) fn last_two_reflections(ray: &Ray) -> Option<[(Complex64, Complex64); 2]> {
+    let mut last = None;
+    let mut before = None;
+    for e in ray.ledger.entries.iter() {
         if let LedgerEntry::Reflection { r_s, r_p, .. } = e {
-            found.push((*r_s, *r_p));
-            if found.len() == 2 {
-                return Some([found[1], found[0]]);
-            }
+            before = last;
+            last = Some((*r_s, *r_p));
         }
     }
-    None
+    Some([before?, last?])
 }
 
 /// 1 − |r|² for r = (x − y)/(x + y) with x real: 4 x Re(y)/|x + y|² (Stokes; 0 under TIR).
@@ -549,8 +542,9 @@ fn entry_reflects_totally(
 
 /// The distance (m) between the two parallel faces of the scene (`close` has checked there are
 /// exactly two, with normals on one line), in double-double from the planes as held: the
-/// signed distances of one point from both, along each plane's own N/|N|.
-fn film_thickness(scene: &Scene) -> DoubleDouble {
+/// signed distances of one point from both, along each plane's own N/|N| (also
+/// [`super::round_trips`]).
+pub(crate) fn film_thickness(scene: &Scene) -> DoubleDouble {
     let (x, y) = (&scene.surfaces[0].plane, &scene.surfaces[1].plane);
     let o = x.anchor;
     let (sx, sy) = (x.signed_distance_dd(o), y.signed_distance_dd(o));
