@@ -29,13 +29,12 @@
 //! trace at every wavelength, each by round trips where they apply.
 
 use super::beats::{Beats, SpectralContribution};
-use super::tail::{film_thickness, last_two_reflections};
+use super::tail::{film_thickness, last_two_reflections, one_film};
 use super::{Arrival, TraceSettings, arrivals_with, phase_cycles, plan};
 use crate::accumulate::Accumulator;
 use crate::optics::double_double::{DoubleDouble, two_prod};
 use crate::optics::material::{Dispersion, IndexError, Medium};
 use crate::optics::ray::Field3;
-use crate::scene::geometry::Extent;
 use crate::scene::source::Emitter;
 use crate::scene::{Scene, SceneOptics, SurfaceKind};
 use crate::trace::path::{EnumerationLimits, EventKind, Target};
@@ -142,31 +141,7 @@ fn check_scene(scene: &Scene, target: &Target) -> Result<DVec3, NotApplicable> {
             );
         }
     }
-    if scene.surfaces.len() != 2 {
-        return refuse(format!(
-            "round trips are traced only between the two faces of one film, and this scene has \
-             {} surfaces",
-            scene.surfaces.len()
-        ));
-    }
-    for s in &scene.surfaces {
-        if !matches!(s.extent, Extent::Unbounded)
-            || !matches!(s.kind, SurfaceKind::Interface { .. })
-        {
-            return refuse(format!(
-                "round trips are traced only between unbounded dielectric faces; {:?} is not one",
-                s.name
-            ));
-        }
-    }
-    let (nx, ny) = (
-        scene.surfaces[0].plane.normal,
-        scene.surfaces[1].plane.normal,
-    );
-    if nx != ny && nx != -ny {
-        return refuse("the faces are not parallel (further orders are not the same round trip)");
-    }
-    Ok(nx)
+    one_film(scene, "round trips are traced").map_err(NotApplicable)
 }
 
 /// One source's deepest traced order (per channel) and the round trip that makes the next one.

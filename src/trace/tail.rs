@@ -238,33 +238,7 @@ pub fn close(
     arrivals: &mut Vec<Arrival>,
 ) -> Result<usize, NotClosable> {
     // The scene: two unbounded dielectric interfaces on one line of normals.
-    if scene.surfaces.len() != 2 {
-        return refuse(format!(
-            "the Airy tail is closed only between the two faces of one film, and this scene has \
-             {} surfaces",
-            scene.surfaces.len()
-        ));
-    }
-    for s in &scene.surfaces {
-        if !matches!(s.extent, Extent::Unbounded)
-            || !matches!(s.kind, SurfaceKind::Interface { .. })
-        {
-            return refuse(format!(
-                "the Airy tail is closed only between unbounded dielectric faces; {:?} is not one",
-                s.name
-            ));
-        }
-    }
-    let (nx, ny) = (
-        scene.surfaces[0].plane.normal,
-        scene.surfaces[1].plane.normal,
-    );
-    if nx != ny && nx != -ny {
-        return refuse(
-            "the Airy tail is closed only between parallel faces (the film's faces are not \
-             parallel: further orders are not a geometric series)",
-        );
-    }
+    let nx = one_film(scene, "the Airy tail is closed").map_err(NotClosable)?;
     let mut added = Vec::new();
     for (si, src) in scene.sources.iter().enumerate() {
         if !matches!(src.emitter, Emitter::PlaneWave { .. }) {
@@ -538,6 +512,40 @@ fn entry_reflects_totally(
         path.launch_normal_q2,
     );
     a != b && q2_t.hi < 0.0
+}
+
+/// The normal of the first face if `scene` is one film: exactly two unbounded dielectric
+/// interfaces whose normals lie on one line, so that every further order is the one before
+/// it after the same round trip. Otherwise why not, each reason beginning with `what` ("the
+/// Airy tail is closed", [`super::round_trips`]' "round trips are traced").
+pub(crate) fn one_film(scene: &Scene, what: &str) -> Result<DVec3, String> {
+    if scene.surfaces.len() != 2 {
+        return Err(format!(
+            "{what} only between the two faces of one film, and this scene has {} surfaces",
+            scene.surfaces.len()
+        ));
+    }
+    for s in &scene.surfaces {
+        if !matches!(s.extent, Extent::Unbounded)
+            || !matches!(s.kind, SurfaceKind::Interface { .. })
+        {
+            return Err(format!(
+                "{what} only between unbounded dielectric faces; {:?} is not one",
+                s.name
+            ));
+        }
+    }
+    let (nx, ny) = (
+        scene.surfaces[0].plane.normal,
+        scene.surfaces[1].plane.normal,
+    );
+    if nx != ny && nx != -ny {
+        return Err(format!(
+            "{what} only between parallel faces (the film's faces are not parallel: further \
+             orders are not the same round trip)"
+        ));
+    }
+    Ok(nx)
 }
 
 /// The distance (m) between the two parallel faces of the scene (`close` has checked there are
