@@ -109,6 +109,16 @@ pub(crate) fn observable_factor(
         None => n_in,
     };
     let normal = DVec3::from_array(*surface_normal);
+    // (n_out cos θ_out)/(n_in cos θ_in) from the double-double normal wavevectors q² = (n cos θ)²
+    // of the incident direction (Snell: q_out² = q_in² + n_out² − n_in²), as the tracer refracts
+    // (`interaction::normal_wavevector_squares`): near grazing in a rotated frame an f64
+    // d·N is a few u off absolutely, u/cos θ relatively (6.5e-8 of T at 89.9999999°,
+    // 6 % at 89.9999999999999°; docs/PHYSICS.md §3a).
+    let (q2_in, q2_out) =
+        crate::optics::interaction::normal_wavevector_squares(d_in, normal, (n_in, n_out), None);
+    if q2_in.hi > 0.0 && q2_out.hi >= 0.0 {
+        return Ok((q2_out / q2_in).sqrt().to_f64());
+    }
     Ok(power_factor(n_in, d_in, n_out, *dir, normal))
 }
 
