@@ -48,6 +48,7 @@ mod truth_geometry;
 mod truth_grazing;
 mod truth_plates;
 mod truth_refusals;
+mod truth_representation;
 mod truth_small_deviations;
 mod truth_tail_closure;
 mod truth_thick_plates;
