@@ -36,7 +36,6 @@ AIRY = [
     "fuzz_airy_s1_1225",
     "fuzz_airy_s1_4064",
     "fuzz_airy_s1_3321",
-    "fuzz_airy_s1_9549",
 ]
 RHOMB = [
     "fuzz_rhomb_retardance_s1_2773",
@@ -116,10 +115,11 @@ def main():
     print("case,point,value")
     for name in AIRY:
         case = json.load(open(os.path.join(FOUND, name + ".json")))
+        intensity = mp.mpf(case["scene"]["sources"][0]["intensity"])
         for i, v in enumerate(airy_case(case, 1)):
-            print(f"held/{name},{i},{mp.nstr(v, 30)}")
+            print(f"held/{name},{i},{mp.nstr(intensity * v, 30)}")
         for i, v in enumerate(airy_turn(case)):
-            print(f"turn/{name},{i},{mp.nstr(v, 30)}")
+            print(f"turn/{name},{i},{mp.nstr(intensity * v, 30)}")
     for name in RHOMB:
         case = json.load(open(os.path.join(FOUND, name + ".json")))
         base, turn = rhomb(case)
