@@ -426,3 +426,119 @@ pub fn direction_sensitivity(
     }
     total.abs()
 }
+
+/// The rounding of an incidence cosine |d̂·N̂| when the direction `d` and the normal `normal`
+/// are each held one rounding off the ones written (docs/PHYSICS.md §8, "Representation
+/// sensitivity"): one rounding of each component of each unit vector moves the dot product by
+/// up to 2u Σ_i |d̂_i N̂_i|. In a frame where N is an axis that is 2u cos θ (relative 2u); in a
+/// rotated frame it is ~u whatever θ, so near grazing (cos θ = 1.7e-9 at 89.9999999°) it is
+/// u/cos θ of the cosine.
+pub fn cosine_rounding(d: DVec3, normal: DVec3) -> f64 {
+    let (d, n) = (d.normalize(), normal.normalize());
+    DIRECTION_ROUNDING * (d * n).abs().element_sum()
+}
+
+/// The *amplitude* part of the representation sensitivity of the `vector` intensity of
+/// `arrivals` (docs/PHYSICS.md §8; [`direction_sensitivity`] is the phase part): how far the
+/// exact intensity moves through the Fresnel coefficients when the plane wave's incidence cosine
+/// c1 on the first face moves by [`cosine_rounding`]. Between parallel faces Snell's invariant
+/// carries that to every event, q_e² = q1² + n_e² − n1² (q = n cos θ), so dc_e = n1² c1
+/// dc1/(n_e q_e), and each event's coefficient moves by κ_e |dc_e| of itself
+/// ([`layer_sensitivity`], κ = |∂coef/∂cos θ|/|coef|). With ρ_k = Σ_e κ_e |dc_e| for arrival k,
+/// δI ≤ Σ_g 2 |E_g| Σ_k ρ_k |E_k| (first order, unsigned). 0 for point and line sources, for
+/// scenes whose faces are not all parallel to the first, and at normal incidence (a turn moves
+/// the cosine only to second order there). In units of the traced |E|².
+pub fn amplitude_sensitivity(
+    arrivals: &[Arrival],
+    reference: DoubleDouble,
+    scene: &Scene,
+    optics: &SceneOptics,
+) -> f64 {
+    let Some(first) = arrivals.first() else {
+        return 0.0;
+    };
+    let plane_wave = |a: &Arrival| {
+        matches!(
+            scene.sources.get(a.source).map(|s| &s.emitter),
+            Some(crate::scene::source::Emitter::PlaneWave { .. })
+        )
+    };
+    let (Some(ev0), Some(d0), Some(&n1)) = (
+        first.path.sequence.first(),
+        first.path.dirs.first(),
+        first.path.indices.first(),
+    ) else {
+        return 0.0;
+    };
+    let n0 = scene.surfaces[ev0.surface].plane.normal.normalize();
+    let parallel = |a: &Arrival| {
+        a.path.sequence.iter().all(|e| {
+            let m = scene.surfaces[e.surface].plane.normal.normalize();
+            (m - n0).length() < 1e-12 || (m + n0).length() < 1e-12
+        })
+    };
+    if !arrivals.iter().all(|a| plane_wave(a) && parallel(a)) {
+        return 0.0;
+    }
+    let c1 = d0.normalize().dot(n0).abs();
+    let dc1 = cosine_rounding(*d0, n0);
+    if c1 == 0.0 || c1 >= 1.0 {
+        return 0.0;
+    }
+    let q1 = n1 * c1;
+    let mut groups: BTreeMap<u64, ([Complex64; 3], f64)> = BTreeMap::new();
+    let mut total = 0.0;
+    for a in arrivals {
+        let c = trace::contribution_from(a, Fidelity::Vector, reference);
+        let e = c.field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
+        let mut rho = 0.0;
+        for (i, ev) in a.path.sequence.iter().enumerate() {
+            let (Some(so), Some(d_in), Some(&n_in)) = (
+                optics.surfaces.get(ev.surface).copied().flatten(),
+                a.path.dirs.get(i),
+                a.path.indices.get(i),
+            ) else {
+                continue;
+            };
+            let normal = scene.surfaces[ev.surface].plane.normal;
+            let layer = optics.layers[ev.surface][usize::from(d_in.dot(normal) >= 0.0)];
+            let kappa = layer_sensitivity(so, ev.kind, normal, *d_in, n_in, layer);
+            let q_e = (q1 * q1 + (n_in - n1) * (n_in + n1)).abs().sqrt();
+            if q_e > 0.0 && kappa > 0.0 {
+                rho += kappa * n1 * q1 / (n_in * q_e) * dc1;
+            }
+        }
+        if c.coherence_id == INCOHERENT {
+            total += 2.0 * e * e * rho;
+            continue;
+        }
+        let g = groups
+            .entry(c.coherence_id)
+            .or_insert(([Complex64::default(); 3], 0.0));
+        let ph = phasor_from_cycles(c.phase_cycles);
+        for (s, f) in g.0.iter_mut().zip(c.field) {
+            *s += f * ph;
+        }
+        g.1 += e * rho;
+    }
+    for (field, de) in groups.values() {
+        let e_g = field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
+        total += 2.0 * e_g * de + de * de;
+    }
+    total
+}
+
+/// The relative representation sensitivity of the far-field power factor
+/// (n_out cos θ_out)/(n_in cos θ_in) that turns a transmitted |E|² into T (docs/PHYSICS.md §3a,
+/// §8): with q = n cos θ and q_out² = q_in² + n_out² − n_in², d ln(q_out/q_in)/dc1 =
+/// n_in q_in/q_out² − 1/c1 (signed), times [`cosine_rounding`]. Near grazing T ∝ cos θ_in and this
+/// is ≈ dc1/c1. 0 where no transmitted wave propagates.
+pub fn power_factor_sensitivity(d: DVec3, normal: DVec3, n_in: f64, n_out: f64) -> f64 {
+    let c1 = d.normalize().dot(normal.normalize()).abs();
+    let q1 = n_in * c1;
+    let q2_out = q1 * q1 + (n_out - n_in) * (n_out + n_in);
+    if c1 == 0.0 || q2_out <= 0.0 {
+        return 0.0;
+    }
+    (n_in * q1 / q2_out - 1.0 / c1).abs() * cosine_rounding(d, normal)
+}

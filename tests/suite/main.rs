@@ -50,6 +50,7 @@ mod truth_grazing;
 mod truth_plates;
 mod truth_point_sources;
 mod truth_refusals;
+mod truth_representation;
 mod truth_small_deviations;
 mod truth_tail_closure;
 mod truth_thick_plates;

@@ -70,6 +70,56 @@ pub fn rhomb_retardance_from_vectors(
     Some(k as f64 * 2.0 * (ts.atan() - tp.atan()))
 }
 
+/// The *representation term* of [`rhomb_retardance_from_vectors`] (docs/PHYSICS.md §8,
+/// "Representation sensitivity"), radians: how far the retardance of `k` identical TIRs moves
+/// when the wave's direction inside the glass and the TIR face's normal are each held one f64
+/// rounding off the ones written, |∂Δ/∂θ| δθ. Every f64 tracer holds them so (the direction
+/// inside the glass is the f64 output of a refraction, the normal one normalization): not a
+/// rounding error of the tracer but of the scene it can hold.
+///
+/// ∂Δ/∂θ = 2k (sin θ/R) [1 − n21²(1 − n21²)/(n21⁴ cos²θ + R²)], R = √(sin²θ − n21²), from
+/// Δ = 2k [atan(R/cos θ) − atan(R/(n21² cos θ))] with R dR/dθ = sin θ cos θ: a square-root
+/// singularity at the critical angle (R → 0). δθ = δ(sin θ)/cos θ with δ(sin θ) the rounding of
+/// |û × n̂| from one rounding of each component of û and of n̂: 2u Σ_{i≠j} |û_i n̂_j| (u = 2⁻⁵³).
+/// In a frame where û and n̂ lie in a coordinate plane that is u sin θ; in a rotated frame it is
+/// ~u, which near the critical angle moves Δ by 1e-9 … 1e-6 rad (`fringe fuzz --family
+/// rhomb_retardance --seed 1`, scenes 2773, 4425, 4569, 7597). `None` without TIR.
+pub fn rhomb_retardance_representation(
+    n_glass: f64,
+    n_out: f64,
+    direction: glam::DVec3,
+    normal: glam::DVec3,
+    k: usize,
+) -> Option<f64> {
+    use super::precise::{div, dot2, unit};
+    let u = unit(direction);
+    let n = unit(normal);
+    let cross = [
+        u[1] * n[2] - u[2] * n[1],
+        u[2] * n[0] - u[0] * n[2],
+        u[0] * n[1] - u[1] * n[0],
+    ];
+    let sin = dot2(&cross, &cross).sqrt();
+    let cos = f64::from(dot2(&u, &n).abs());
+    let n21 = div(n_out.into(), n_glass.into());
+    let gap = (sin - n21) * (sin + n21);
+    if gap.hi() <= 0.0 || cos <= 0.0 {
+        return None;
+    }
+    let r = f64::from(gap.sqrt());
+    let (sin, n21) = (f64::from(sin), f64::from(n21));
+    let n2 = n21 * n21;
+    let slope =
+        2.0 * k as f64 * (sin / r) * (1.0 - n2 * (1.0 - n2) / (n2 * n2 * cos * cos + r * r));
+    let (uf, nf) = (direction.normalize(), normal.normalize());
+    let products: f64 = (0..3)
+        .flat_map(|i| (0..3).filter(move |j| *j != i).map(move |j| (i, j)))
+        .map(|(i, j)| (uf[i] * nf[j]).abs())
+        .sum();
+    let d_sin = 2.0 * (f64::EPSILON / 2.0) * products;
+    Some(slope.abs() * d_sin / cos)
+}
+
 /// One planar face a plane wave meets: a point of it, its normal (any length, either
 /// orientation), the indices before and after it, and whether the wave reflects there.
 #[derive(Clone, Copy, Debug, PartialEq)]

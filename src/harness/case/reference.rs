@@ -109,7 +109,49 @@ pub(crate) fn observable_factor(
         None => n_in,
     };
     let normal = DVec3::from_array(*surface_normal);
+    // (n_out cos θ_out)/(n_in cos θ_in) from the double-double normal wavevectors q² = (n cos θ)²
+    // of the incident direction (Snell: q_out² = q_in² + n_out² − n_in²), as the tracer refracts
+    // (`interaction::normal_wavevector_squares`): near grazing in a rotated frame an f64
+    // d·N is a few u off absolutely, u/cos θ relatively (6.5e-8 of T at 89.9999999°,
+    // 6 % at 89.9999999999999°; docs/PHYSICS.md §3a).
+    let (q2_in, q2_out) =
+        crate::optics::interaction::normal_wavevector_squares(d_in, normal, (n_in, n_out), None);
+    if q2_in.hi > 0.0 && q2_out.hi >= 0.0 {
+        return Ok((q2_out / q2_in).sqrt().to_f64());
+    }
     Ok(power_factor(n_in, d_in, n_out, *dir, normal))
+}
+
+/// The relative representation sensitivity of [`observable_factor`]
+/// ([`crate::harness::conditioning::power_factor_sensitivity`], docs/PHYSICS.md §8): 0 except
+/// for a transmitted far-field probe of a plane wave.
+pub(crate) fn observable_factor_representation(
+    observer: &Observer,
+    built: &Built,
+    lambda_m: f64,
+) -> f64 {
+    let Observer::FarField {
+        side: FarSide::Transmitted,
+        surface_normal,
+        exit_medium,
+    } = observer
+    else {
+        return 0.0;
+    };
+    let (Some((d_in, _)), Ok(n_in)) = (plane_wave(&built.scene), ambient_index(built, lambda_m))
+    else {
+        return 0.0;
+    };
+    let n_out = match exit_medium {
+        Some(m) => index(built, m, lambda_m).unwrap_or(n_in),
+        None => n_in,
+    };
+    crate::harness::conditioning::power_factor_sensitivity(
+        d_in,
+        DVec3::from_array(*surface_normal),
+        n_in,
+        n_out,
+    )
 }
 
 /// Short name of a reference model for tables (the serde tag).
@@ -482,6 +524,45 @@ pub fn value(
             Err("spacing references are evaluated by spacing()".into())
         }
     }
+}
+
+/// The representation term of a phase reference at vacuum wavelength `lambda_m` (rad,
+/// docs/PHYSICS.md §8): for `rhomb_retardance`, how far its retardance moves when the wave's
+/// direction and the TIR face's normal are held one rounding off
+/// ([`analytic::tir::rhomb_retardance_representation`]; the direction inside the glass is the
+/// plane wave's, as the closed form takes it); 0 for every other reference.
+pub(crate) fn phase_representation(model: &ReferenceModel, built: &Built, lambda_m: f64) -> f64 {
+    let ReferenceModel::RhombRetardance {
+        glass,
+        tir_surface,
+        tir_count,
+    } = model
+    else {
+        return 0.0;
+    };
+    let scene = &built.scene;
+    let (Some((d, _)), Ok(n), Ok(n_glass)) = (
+        plane_wave(scene),
+        built.surface(tir_surface),
+        index(built, glass, lambda_m),
+    ) else {
+        return 0.0;
+    };
+    let SurfaceKind::Interface { front, back, .. } = &scene.surfaces[n].kind else {
+        return 0.0;
+    };
+    let outside = if front.name == *glass { back } else { front };
+    let Ok(n_out) = outside.index(lambda_m) else {
+        return 0.0;
+    };
+    analytic::tir::rhomb_retardance_representation(
+        n_glass,
+        n_out,
+        d,
+        scene.surfaces[n].plane.normal,
+        *tir_count,
+    )
+    .unwrap_or(0.0)
 }
 
 /// Wrap an angle to (−π, π].

@@ -208,9 +208,7 @@ pub fn judge(case: &Value, file: &Path) -> Verdict {
     // Plus the scene's representation sensitivity (docs/PHYSICS.md §8): how far the exact
     // observable moves when the scene's plane-wave direction turns by the rounding an f64 scene
     // holds it to (a thick plate in a rotated frame), which no f64 tracer can avoid.
-    let representation = primary
-        .derived_tolerance(&result.representation, 0.0)
-        .unwrap_or(0.0);
+    let representation = result.representation_tolerance();
     let derived = primary.derived_tolerance(&result.rounding, DERIVED_FLOOR);
     let tolerance = derived.map_or(stated, |d| d.min(stated)) + representation;
     let Some(stats) = primary.stats(Fidelity::Vector) else {

@@ -189,6 +189,33 @@ pub struct CaseResult {
     /// direction turns by the rounding its f64 representation allows
     /// ([`crate::harness::conditioning::direction_sensitivity`], same units; docs/PHYSICS.md §8).
     pub representation: Vec<f64>,
+    /// Per probe point, the same for a primary reference that measures a phase (the rhomb's
+    /// retardance, rad): how far the exact value moves when the directions it depends on are
+    /// held one rounding off ([`crate::harness::analytic::tir::rhomb_retardance_representation`]);
+    /// 0 for other references.
+    pub phase_representation: Vec<f64>,
+}
+
+impl CaseResult {
+    /// The primary reference's representation term in the units its deviations are measured in
+    /// (docs/PHYSICS.md §8): relative to the profile's scale for an intensity profile
+    /// ([`CaseResult::representation`]), in radians for a retardance
+    /// ([`CaseResult::phase_representation`]), 0 otherwise.
+    pub fn representation_tolerance(&self) -> f64 {
+        let Some(primary) = self.metrics.first() else {
+            return 0.0;
+        };
+        match primary.kind {
+            MetricKind::Intensity => primary
+                .derived_tolerance(&self.representation, 0.0)
+                .unwrap_or(0.0),
+            MetricKind::Retardance => self
+                .phase_representation
+                .iter()
+                .fold(0.0f64, |m, x| m.max(*x)),
+            _ => 0.0,
+        }
+    }
 }
 
 struct PointOut {
@@ -197,6 +224,8 @@ struct PointOut {
     rounding: f64,
     /// [`crate::harness::conditioning::direction_sensitivity`] summed like the intensity.
     representation: f64,
+    /// [`CaseResult::phase_representation`] of this point.
+    phase_representation: f64,
     analytic: Vec<f64>,
     /// Retardance / visibility per reference and level.
     special: Vec<BTreeMap<Fidelity, f64>>,
@@ -368,6 +397,7 @@ fn run_point(
         intensity: levels.iter().map(|l| (*l, 0.0)).collect(),
         rounding: 0.0,
         representation: 0.0,
+        phase_representation: 0.0,
         analytic: vec![0.0; spec.references.len()],
         special: vec![BTreeMap::new(); spec.references.len()],
         needs: SceneNeeds::default(),
@@ -441,14 +471,23 @@ fn run_point(
                     &built.scene,
                     &optics,
                 );
+            // The representation term: the phase (direction_sensitivity) and the amplitudes
+            // (amplitude_sensitivity; the transmitted power factor's own, relative) of a scene
+            // whose plane-wave direction and normals are held one rounding off.
             out.representation += w
                 * factor
-                * crate::harness::conditioning::direction_sensitivity(
+                * (crate::harness::conditioning::direction_sensitivity(
                     &arr,
                     r,
                     lambda,
                     &built.scene,
-                );
+                ) + crate::harness::conditioning::amplitude_sensitivity(
+                    &arr,
+                    r,
+                    &built.scene,
+                    &optics,
+                ) + vector_intensity.unwrap_or(0.0)
+                    * reference::observable_factor_representation(&pt.observer, built, lambda));
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity
@@ -551,6 +590,10 @@ fn run_point(
                     spec.trace.spreading,
                 )
                 .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
+                if ri == 0 {
+                    out.phase_representation =
+                        reference::phase_representation(&r.model, &built, center);
+                }
                 for l in levels {
                     if let Some(v) = special_value(&r.model, &built, &center_arrivals, *l) {
                         out.special[ri].insert(*l, v);
@@ -703,6 +746,7 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         detection: None,
         rounding: outs.iter().map(|o| o.rounding).collect(),
         representation: outs.iter().map(|o| o.representation).collect(),
+        phase_representation: outs.iter().map(|o| o.phase_representation).collect(),
     };
     if convergence_report {
         result.convergence = convergence(case, &points)?;
