@@ -48,7 +48,7 @@ use crate::trace::path::EventKind;
 use crate::trace::{self, Arrival};
 use glam::DVec3;
 use num_complex::Complex64;
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap};
 
 /// Unit roundoff of f64, u = 2⁻⁵³.
 pub(crate) const UNIT_ROUNDOFF: f64 = f64::EPSILON / 2.0;
@@ -260,12 +260,14 @@ pub fn intensity_rounding(
             Some(crate::scene::source::Emitter::PlaneWave { .. })
         );
         let tilt = if plane_wave { 0.0 } else { cu * x / ell };
-        for (i, ev) in a.path.sequence.iter().enumerate().filter(|_| tilt > 0.0) {
-            let (Some(so), Some(d_in), Some(&n_in)) = (
-                optics.surfaces.get(ev.surface).copied().flatten(),
-                a.path.dirs.get(i),
-                a.path.indices.get(i),
-            ) else {
+        let events = a
+            .path
+            .sequence
+            .iter()
+            .zip(a.path.dirs.iter())
+            .zip(a.path.indices.iter());
+        for ((ev, d_in), &n_in) in events.filter(|_| tilt > 0.0) {
+            let Some(so) = optics.surfaces.get(ev.surface).copied().flatten() else {
                 continue;
             };
             let normal = scene.surfaces[ev.surface].plane.normal;
@@ -486,27 +488,42 @@ pub fn amplitude_sensitivity(
         return 0.0;
     }
     let q1 = n1 * c1;
+    // Between parallel faces every event at one surface, of one kind, from one side, in one
+    // index meets the same angle (Snell's invariant), so its share κ_e |dc_e| is computed once:
+    // the orders of an Airy sum repeat a few events hundreds of times.
+    let mut shares: HashMap<(usize, EventKind, bool, u64), f64> = HashMap::new();
     let mut groups: BTreeMap<u64, ([Complex64; 3], f64)> = BTreeMap::new();
     let mut total = 0.0;
     for a in arrivals {
         let c = trace::contribution_from(a, Fidelity::Vector, reference);
         let e = c.field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
         let mut rho = 0.0;
-        for (i, ev) in a.path.sequence.iter().enumerate() {
-            let (Some(so), Some(d_in), Some(&n_in)) = (
-                optics.surfaces.get(ev.surface).copied().flatten(),
-                a.path.dirs.get(i),
-                a.path.indices.get(i),
-            ) else {
+        // Zipped, not indexed: the far-field walk's paths are shared trails, where `get(i)` walks
+        // back from the end (O(len) per event, O(m³) over an Airy sum's orders).
+        let events = a
+            .path
+            .sequence
+            .iter()
+            .zip(a.path.dirs.iter())
+            .zip(a.path.indices.iter());
+        for ((ev, d_in), &n_in) in events {
+            let Some(so) = optics.surfaces.get(ev.surface).copied().flatten() else {
                 continue;
             };
             let normal = scene.surfaces[ev.surface].plane.normal;
-            let layer = optics.layers[ev.surface][usize::from(d_in.dot(normal) >= 0.0)];
-            let kappa = layer_sensitivity(so, ev.kind, normal, *d_in, n_in, layer);
-            let q_e = (q1 * q1 + (n_in - n1) * (n_in + n1)).abs().sqrt();
-            if q_e > 0.0 && kappa > 0.0 {
-                rho += kappa * n1 * q1 / (n_in * q_e) * dc1;
-            }
+            let side = d_in.dot(normal) >= 0.0;
+            rho += *shares
+                .entry((ev.surface, ev.kind, side, n_in.to_bits()))
+                .or_insert_with(|| {
+                    let layer = optics.layers[ev.surface][usize::from(side)];
+                    let kappa = layer_sensitivity(so, ev.kind, normal, *d_in, n_in, layer);
+                    let q_e = (q1 * q1 + (n_in - n1) * (n_in + n1)).abs().sqrt();
+                    if q_e > 0.0 && kappa > 0.0 {
+                        kappa * n1 * q1 / (n_in * q_e) * dc1
+                    } else {
+                        0.0
+                    }
+                });
         }
         if c.coherence_id == INCOHERENT {
             total += 2.0 * e * e * rho;
