@@ -74,8 +74,8 @@ pub(crate) fn sampled_points(n: usize) -> Vec<usize> {
 
 /// The floors of a case's primary reference, for intensity references with a `vector`
 /// tolerance (`None` for spacing, retardance and visibility references: one path's phase or
-/// amplitude does not enter them the same way), tracing the points [`sampled_points`] names
-/// again; a case run measures them on its own arrivals ([`floors_of_traced`]).
+/// amplitude does not enter them the same way), tracing the points `sampled_points` names
+/// again; a case run measures them on its own arrivals (`floors_of_traced`).
 pub fn detection_floors(
     case: &Case,
     result: &CaseResult,
