@@ -95,28 +95,10 @@ pub fn layer_sensitivity(
         return 0.0;
     }
     let coefficients = |c: f64| {
-        let f = fresnel::fresnel(n1, n2, c);
-        match (kind, layer) {
-            (EventKind::Reflect | EventKind::Tunnel, Some(l)) if f.total_internal_reflection => {
-                let q2_i = two_prod(n1 * c, n1 * c);
-                let q2_t = q2_i + two_prod(n2, n2) - two_prod(n1, n1);
-                let q2_3 = q2_i + two_prod(l.n_beyond, l.n_beyond) - two_prod(n1, n1);
-                let fl = fresnel::frustrated_layer(
-                    (n1, n2, l.n_beyond),
-                    (q2_i, q2_t, q2_3),
-                    l.thickness_m,
-                    l.lambda_m,
-                );
-                if kind == EventKind::Tunnel {
-                    fl.t
-                } else {
-                    [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
-                }
-            }
-            (EventKind::Tunnel, _) => [Complex64::from(0.0); 2],
-            (EventKind::Reflect, _) => [f.r_s, f.r_p],
-            (EventKind::Refract, _) => [f.t_s, f.t_p],
-        }
+        let q2_i = two_prod(n1 * c, n1 * c);
+        let q2_t = q2_i + two_prod(n2, n2) - two_prod(n1, n1);
+        let q2_3 = layer.map(|l| q2_i + two_prod(l.n_beyond, l.n_beyond) - two_prod(n1, n1));
+        event_coefficients(kind, layer, (n1, n2), c, (q2_i, q2_t, q2_3))
     };
     let c = (d_in.dot(normal).abs() / d_in.length()).min(1.0);
     const STEP: f64 = 1e-6;
@@ -131,6 +113,41 @@ pub fn layer_sensitivity(
         .zip(b)
         .fold(0.0f64, |m, (x, y)| m.max((y - x).norm()));
     slope / (hi - lo) / size
+}
+
+/// The coefficients (s, p) event `kind` applies between indices (n1, n2) at incidence cosine
+/// `c`, with the normal wavevector squares (q_i², q_t², q_3²) = (n cos θ)² in the incident,
+/// transmitted and beyond-the-layer media: r or t, or beyond the critical angle with `layer`
+/// behind the face the frustrated layer's r_layer or t_layer ([`fresnel::frustrated_layer`],
+/// docs/PHYSICS.md §5; q_3² is `Some` whenever `layer` is).
+fn event_coefficients(
+    kind: EventKind,
+    layer: Option<Layer>,
+    (n1, n2): (f64, f64),
+    c: f64,
+    (q2_i, q2_t, q2_3): (DoubleDouble, DoubleDouble, Option<DoubleDouble>),
+) -> [Complex64; 2] {
+    let f = fresnel::fresnel_with_cos2_t(n1, n2, c, q2_t.to_f64() / (n2 * n2));
+    match (kind, layer, q2_3) {
+        (EventKind::Reflect | EventKind::Tunnel, Some(l), Some(q2_3))
+            if f.total_internal_reflection =>
+        {
+            let fl = fresnel::frustrated_layer(
+                (n1, n2, l.n_beyond),
+                (q2_i, q2_t, q2_3),
+                l.thickness_m,
+                l.lambda_m,
+            );
+            if kind == EventKind::Tunnel {
+                fl.t
+            } else {
+                [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
+            }
+        }
+        (EventKind::Tunnel, ..) => [Complex64::from(0.0); 2],
+        (EventKind::Reflect, ..) => [f.r_s, f.r_p],
+        (EventKind::Refract, ..) => [f.t_s, f.t_p],
+    }
 }
 
 /// The relative change of the coefficients of event `kind` (as [`layer_sensitivity`]: s and p,
@@ -167,26 +184,8 @@ pub fn tilt_change(
         let q2_i = two_prod(n1 * c, n1 * c);
         let n1s = n1 * s;
         let q2_t = two_prod(n2, n2) - two_prod(n1s, n1s);
-        let f = fresnel::fresnel_with_cos2_t(n1, n2, c, (q2_t.to_f64()) / (n2 * n2));
-        match (kind, layer) {
-            (EventKind::Reflect | EventKind::Tunnel, Some(l)) if f.total_internal_reflection => {
-                let q2_3 = two_prod(l.n_beyond, l.n_beyond) - two_prod(n1s, n1s);
-                let fl = fresnel::frustrated_layer(
-                    (n1, n2, l.n_beyond),
-                    (q2_i, q2_t, q2_3),
-                    l.thickness_m,
-                    l.lambda_m,
-                );
-                if kind == EventKind::Tunnel {
-                    fl.t
-                } else {
-                    [f.r_s + fl.dr[0], f.r_p + fl.dr[1]]
-                }
-            }
-            (EventKind::Tunnel, _) => [Complex64::from(0.0); 2],
-            (EventKind::Reflect, _) => [f.r_s, f.r_p],
-            (EventKind::Refract, _) => [f.t_s, f.t_p],
-        }
+        let q2_3 = layer.map(|l| two_prod(l.n_beyond, l.n_beyond) - two_prod(n1s, n1s));
+        event_coefficients(kind, layer, (n1, n2), c, (q2_i, q2_t, q2_3))
     };
     let len = d_in.length() * normal.length();
     let c = (d_in.dot(normal).abs() / len).min(1.0);
