@@ -208,6 +208,14 @@ pub fn tilt_change(
     turned(1.0).max(turned(-1.0)) / size
 }
 
+/// Whether arrival `a` comes from a plane-wave source of `scene`.
+fn from_plane_wave(scene: &Scene, a: &Arrival) -> bool {
+    matches!(
+        scene.sources.get(a.source).map(|s| &s.emitter),
+        Some(crate::scene::source::Emitter::PlaneWave { .. })
+    )
+}
+
 /// The bound (module docs) on the rounding error of the `vector` intensity of `arrivals` at
 /// vacuum wavelength `lambda_m`, phases referred to the optical path `reference` (the first
 /// arrival's, as the traced value refers them), in the units of the traced |E|². `scene` and
@@ -254,10 +262,7 @@ pub fn intensity_rounding(
         // The event points' rounding tilts every incidence cosine by up to C u X/ℓ where the
         // directions are solved through the points (point and line sources); a plane wave's
         // directions follow from its own direction and Snell's law, whatever the points.
-        let plane_wave = matches!(
-            scene.sources.get(a.source).map(|s| &s.emitter),
-            Some(crate::scene::source::Emitter::PlaneWave { .. })
-        );
+        let plane_wave = from_plane_wave(scene, a);
         let tilt = if plane_wave { 0.0 } else { cu * x / ell };
         let events = a
             .path
@@ -344,12 +349,7 @@ pub fn direction_sensitivity(
     let Some(first) = arrivals.first() else {
         return 0.0;
     };
-    let plane_wave = |a: &Arrival| {
-        matches!(
-            scene.sources.get(a.source).map(|s| &s.emitter),
-            Some(crate::scene::source::Emitter::PlaneWave { .. })
-        )
-    };
+    let plane_wave = |a: &Arrival| from_plane_wave(scene, a);
     if arrivals.len() < 2 || !arrivals.iter().all(plane_wave) {
         return 0.0;
     }
@@ -458,12 +458,7 @@ pub fn amplitude_sensitivity(
     let Some(first) = arrivals.first() else {
         return 0.0;
     };
-    let plane_wave = |a: &Arrival| {
-        matches!(
-            scene.sources.get(a.source).map(|s| &s.emitter),
-            Some(crate::scene::source::Emitter::PlaneWave { .. })
-        )
-    };
+    let plane_wave = |a: &Arrival| from_plane_wave(scene, a);
     let (Some(ev0), Some(d0), Some(&n1)) = (
         first.path.sequence.first(),
         first.path.dirs.first(),

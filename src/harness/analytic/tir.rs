@@ -4,6 +4,9 @@
 //! Under TIR |r_s| = |r_p| = 1 with arg r_s (P5) and arg r_p (P6); the relative phase
 //! Δ = arg r_p − arg r_s obeys tan(|Δ|/2) = cos θ sqrt(sin²θ − n21²)/sin²θ.
 
+use super::precise::div;
+use twofloat::TwoFloat;
+
 /// arg r_s under TIR (P5), radians: −2 atan(sqrt(sin²θ − n21²)/cos θ).
 pub(crate) fn phase_s(n1: f64, n2: f64, theta: f64) -> f64 {
     let n21 = n2 / n1;
@@ -48,26 +51,46 @@ pub fn rhomb_retardance_from_vectors(
     normal: glam::DVec3,
     k: usize,
 ) -> Option<f64> {
-    use super::precise::{div, dot2, unit};
-    let u = unit(direction);
-    let n = unit(normal);
-    let cross = [
-        u[1] * n[2] - u[2] * n[1],
-        u[2] * n[0] - u[0] * n[2],
-        u[0] * n[1] - u[1] * n[0],
-    ];
-    let sin = dot2(&cross, &cross).sqrt();
-    let cos = dot2(&u, &n).abs();
-    let n21 = div(n_out.into(), n_glass.into());
-    let gap = (sin - n21) * (sin + n21);
-    if gap.hi() <= 0.0 || cos.hi() <= 0.0 {
-        return None;
-    }
+    let TirAngle {
+        sin: _,
+        cos,
+        n21,
+        gap,
+    } = TirAngle::of(n_glass, n_out, direction, normal)?;
     let root = gap.sqrt();
     // tan(−P5/2) = √(sin²θ − n21²)/cos θ, tan(−P6/2) = √(sin²θ − n21²)/(n21² cos θ).
     let ts = f64::from(div(root, cos));
     let tp = f64::from(div(root, n21 * n21 * cos));
     Some(k as f64 * 2.0 * (ts.atan() - tp.atan()))
+}
+
+/// A wave's angle at a TIR face from the given vectors, in double-double (the shared part of
+/// [`rhomb_retardance_from_vectors`] and [`rhomb_retardance_representation`]): sin θ = |û × n̂|,
+/// cos θ = |û·n̂|, n21 = n_out/n_glass and gap = sin²θ − n21² = (sin θ − n21)(sin θ + n21).
+struct TirAngle {
+    sin: TwoFloat,
+    cos: TwoFloat,
+    n21: TwoFloat,
+    gap: TwoFloat,
+}
+
+impl TirAngle {
+    /// `None` when the wave is not beyond the critical angle (gap ≤ 0) or grazes (cos θ = 0).
+    fn of(n_glass: f64, n_out: f64, direction: glam::DVec3, normal: glam::DVec3) -> Option<Self> {
+        use super::precise::{dot2, unit};
+        let u = unit(direction);
+        let n = unit(normal);
+        let cross = [
+            u[1] * n[2] - u[2] * n[1],
+            u[2] * n[0] - u[0] * n[2],
+            u[0] * n[1] - u[1] * n[0],
+        ];
+        let sin = dot2(&cross, &cross).sqrt();
+        let cos = dot2(&u, &n).abs();
+        let n21 = div(n_out.into(), n_glass.into());
+        let gap = (sin - n21) * (sin + n21);
+        (gap.hi() > 0.0 && cos.hi() > 0.0).then_some(TirAngle { sin, cos, n21, gap })
+    }
 }
 
 /// The *representation term* of [`rhomb_retardance_from_vectors`] (docs/PHYSICS.md §8,
@@ -91,21 +114,8 @@ pub fn rhomb_retardance_representation(
     normal: glam::DVec3,
     k: usize,
 ) -> Option<f64> {
-    use super::precise::{div, dot2, unit};
-    let u = unit(direction);
-    let n = unit(normal);
-    let cross = [
-        u[1] * n[2] - u[2] * n[1],
-        u[2] * n[0] - u[0] * n[2],
-        u[0] * n[1] - u[1] * n[0],
-    ];
-    let sin = dot2(&cross, &cross).sqrt();
-    let cos = f64::from(dot2(&u, &n).abs());
-    let n21 = div(n_out.into(), n_glass.into());
-    let gap = (sin - n21) * (sin + n21);
-    if gap.hi() <= 0.0 || cos <= 0.0 {
-        return None;
-    }
+    let TirAngle { sin, cos, n21, gap } = TirAngle::of(n_glass, n_out, direction, normal)?;
+    let cos = f64::from(cos);
     let r = f64::from(gap.sqrt());
     let (sin, n21) = (f64::from(sin), f64::from(n21));
     let n2 = n21 * n21;
