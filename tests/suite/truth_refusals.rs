@@ -130,15 +130,5 @@ fn thin_plate_paths_land_and_pass() {
 /// script's two-channel sum does not model; they are judged against the closed form above).
 #[test]
 fn thin_plate_traced_intensities_hold_against_60_digits() {
-    let truth = crate::support::mpmath_profiles("thin_plate_mpmath.csv");
-    assert_eq!(truth.len(), 6);
-    let mut bad = Vec::new();
-    for (name, values) in &truth {
-        let err = crate::support::traced_error(name, values);
-        println!("{name}: traced vs 60 digits {err:e}");
-        if err.is_nan() || err > 1e-10 {
-            bad.push(format!("{name}: err {err:e}"));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_traced_within("thin_plate_mpmath.csv", 6, 1e-10);
 }

@@ -46,19 +46,24 @@ fn grazing_airy_scenes_are_judged_not_refused() {
 /// 0.14 pm … 1.2 µm, in ambient n = 0.016 … 3.8.
 const FRUSTRATED_FILM_SCENES: [usize; 10] = [6, 16, 55, 80, 119, 156, 163, 166, 217, 285];
 
-/// Those scenes are judged, not refused, and pass the gate against the `airy` closed form.
-#[test]
-fn frustrated_film_scenes_are_judged_not_refused() {
+/// Asserts that airy scenes `indices` of fuzz seed 1 are judged (not refused) and pass the gate.
+fn assert_airy_scenes_pass(indices: &[usize], label: &str) {
     let mut bad = Vec::new();
-    for index in FRUSTRATED_FILM_SCENES {
+    for &index in indices {
         let scene = fuzz::scene(Family::Airy, 1, index, None);
         let case = scene.case.expect("a generated case");
-        let verdict = fuzz::judge(&case, Path::new(&format!("frustrated_{index}.json")));
+        let verdict = fuzz::judge(&case, Path::new(&format!("{label}_{index}.json")));
         if !matches!(verdict, Verdict::Pass { .. }) {
             bad.push(format!("scene {index} {:?}: {verdict:?}", scene.tags));
         }
     }
     assert!(bad.is_empty(), "{bad:#?}");
+}
+
+/// Those scenes are judged, not refused, and pass the gate against the `airy` closed form.
+#[test]
+fn frustrated_film_scenes_are_judged_not_refused() {
+    assert_airy_scenes_pass(&FRUSTRATED_FILM_SCENES, "frustrated");
 }
 
 /// The traced reflectances of the unpolarized ones (case files `tests/fuzz_found/
@@ -67,17 +72,7 @@ fn frustrated_film_scenes_are_judged_not_refused() {
 /// tests/data/frustrated_film_mpmath.csv): within 1e-12 of each profile's largest value.
 #[test]
 fn frustrated_film_reflectances_hold_against_50_digits() {
-    let truth = crate::support::mpmath_profiles("frustrated_film_mpmath.csv");
-    assert_eq!(truth.len(), 4);
-    let mut bad = Vec::new();
-    for (name, values) in &truth {
-        let err = crate::support::traced_error(name, values);
-        println!("{name}: traced vs 50 digits {err:e}");
-        if err.is_nan() || err > 1e-12 {
-            bad.push(format!("{name}: err {err:e}"));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_traced_within("frustrated_film_mpmath.csv", 4, 1e-12);
 }
 
 /// Films lit 1e-10°–1° below the critical angle of their top face (fuzz `airy` seed 1, shrunk
@@ -96,17 +91,7 @@ fn frustrated_film_reflectances_hold_against_50_digits() {
 /// Snell's invariant (`trace::parallel_phase`), and 203 is 5e-16 off.
 #[test]
 fn below_critical_tails_close_from_the_carried_round_trip() {
-    let truth = crate::support::mpmath_profiles("below_critical_closure_mpmath.csv");
-    assert_eq!(truth.len(), 4);
-    let mut bad = Vec::new();
-    for (name, values) in &truth {
-        let err = crate::support::traced_error(name, values);
-        println!("{name}: traced vs 50 digits {err:e}");
-        if err.is_nan() || err > 1e-11 {
-            bad.push(format!("{name}: err {err:e}"));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_traced_within("below_critical_closure_mpmath.csv", 4, 1e-11);
 }
 
 /// Scenes of `fringe fuzz --family airy --seed 1 --count 10000` lit 1e-9°…1e-7° beyond the
@@ -128,16 +113,7 @@ const NEAR_CRITICAL_FRUSTRATED_SCENES: [usize; 23] = [
 /// Those scenes are judged, not refused, and pass the gate against the `airy` closed form.
 #[test]
 fn near_critical_frustrated_scenes_are_judged_not_refused() {
-    let mut bad = Vec::new();
-    for index in NEAR_CRITICAL_FRUSTRATED_SCENES {
-        let scene = fuzz::scene(Family::Airy, 1, index, None);
-        let case = scene.case.expect("a generated case");
-        let verdict = fuzz::judge(&case, Path::new(&format!("near_critical_{index}.json")));
-        if !matches!(verdict, Verdict::Pass { .. }) {
-            bad.push(format!("scene {index} {:?}: {verdict:?}", scene.tags));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    assert_airy_scenes_pass(&NEAR_CRITICAL_FRUSTRATED_SCENES, "near_critical");
 }
 
 /// Five of them (unpolarized; case files `tests/fuzz_found/fuzz_airy_s1_<index>.json`, the
@@ -147,15 +123,5 @@ fn near_critical_frustrated_scenes_are_judged_not_refused() {
 /// within 1e-12 of each profile's largest value.
 #[test]
 fn near_critical_frustrated_films_hold_against_50_digits() {
-    let truth = crate::support::mpmath_profiles("near_critical_frustrated_mpmath.csv");
-    assert_eq!(truth.len(), 5);
-    let mut bad = Vec::new();
-    for (name, values) in &truth {
-        let err = crate::support::traced_error(name, values);
-        println!("{name}: traced vs 50 digits {err:e}");
-        if err.is_nan() || err > 1e-12 {
-            bad.push(format!("{name}: err {err:e}"));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_traced_within("near_critical_frustrated_mpmath.csv", 5, 1e-12);
 }

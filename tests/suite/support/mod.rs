@@ -92,3 +92,20 @@ pub fn traced_error(name: &str, truth: &[f64]) -> f64 {
         .map(|(t, m)| (t - m).abs() / scale)
         .fold(0.0, f64::max)
 }
+
+/// Asserts that every case file named in the 50-digit CSV `csv` (`tests/data/`, read by
+/// [`mpmath_profiles`]; `profiles` of them) traces within `tol` of its profile's largest value
+/// ([`traced_error`]); a NaN fails.
+pub fn assert_traced_within(csv: &str, profiles: usize, tol: f64) {
+    let truth = mpmath_profiles(csv);
+    assert_eq!(truth.len(), profiles, "{csv}: profiles");
+    let mut bad = Vec::new();
+    for (name, values) in &truth {
+        let err = traced_error(name, values);
+        println!("{name}: traced vs {csv} {err:e}");
+        if err.is_nan() || err > tol {
+            bad.push(format!("{name}: err {err:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
