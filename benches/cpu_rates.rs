@@ -217,7 +217,19 @@ fn spectrum() {
             black_box(sixteen(true));
         },
     );
-    // N-BK7 (Sellmeier): a trace at every wavelength, by the general walk and by round trips.
+    spectrum_dispersive();
+}
+
+/// N-BK7 (Sellmeier): a trace at every wavelength, by the general walk and by round trips
+/// (`cpu_rates spectrum` runs it last; `cpu_rates bk7` alone).
+fn spectrum_dispersive() {
+    const D: f64 = 3.217e-6;
+    let theta = 35f64.to_radians();
+    let lambdas: Vec<f64> = (0..401).map(|i| 400e-9 + 1e-9 * i as f64).collect();
+    let mid = lambdas[200];
+    let probes = [DVec3::new(0.0, 0.0, 0.001)];
+    let mut beats = Beats::default();
+    let mut out = vec![0.0; lambdas.len()];
     let bk7 = Medium {
         name: "N-BK7".into(),
         dispersion: Dispersion::bk7(),
@@ -258,8 +270,9 @@ fn main() {
     match std::env::args().nth(1).as_deref() {
         Some("accumulate") => accumulate(),
         Some("spectrum") => spectrum(),
+        Some("bk7") => spectrum_dispersive(),
         _ => {
-            eprintln!("usage: cpu_rates accumulate|spectrum");
+            eprintln!("usage: cpu_rates accumulate|spectrum|bk7");
             std::process::exit(2);
         }
     }
