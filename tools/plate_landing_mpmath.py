@@ -10,15 +10,13 @@ to the two end points, are tests/fuzz_found/fuzz_two_beam_plate_s1_<n>.json.
 
 Two tables, both `case,point,value` (one row per probe point):
 - tests/data/plate_landing_mpmath.csv: the two-beam intensity I (as
-  tools/two_beam_plate_near_critical_mpmath.py evaluates it: the formulas of
+  tools/two_beam_plate_near_critical_mpmath.py evaluates it, times the source's intensity: the formulas of
   tools/mp_two_beam.py, the beam through the plate solved in w = tan t by bisection, the top
   beam the plate's frustrated r_layer beyond the critical angle, basis-free sources with
   cos^2 in the p cross term);
 - tests/data/plate_landing_paths_mpmath.csv: the beam through the plate itself, cases
   `<name>/run` (its lateral run inside the plate, 2 d tan t, m), `<name>/path` (its optical
-  path n1 L1 + 2 n2 d / cos t + n1 L3, m), `<name>/cos_t` (cos t inside the plate) and
-  `<name>/run_thicker` (the lateral run for the plate 1e-12 thicker, relative: an injected
-  error the test must tell from the truth).
+  path n1 L1 + 2 n2 d / cos t + n1 L3, m) and `<name>/cos_t` (cos t inside the plate).
 Inputs are the case files' own binary64 numbers (heights and lateral distance along the
 plate's normal normalized at 50 digits; thickness_um * 1e-6, wavelength_nm * 1e-9 in binary64).
 Run (from the repository root):
@@ -100,19 +98,18 @@ if __name__ == "__main__":
         name = f"fuzz_two_beam_plate_s1_{n}"
         points = geometry(name)
         if what == "intensity":
+            # The source's intensity scales the traced field intensity (|E|² of a unit source).
+            c = json.load(open(os.path.join(HERE, name + ".json")))
+            i0 = M(c["scene"]["sources"][0]["intensity"])
             for k, g in enumerate(points):
-                print(f"{name},{k},{mp.nstr(intensity(*g), 30)}")
+                print(f"{name},{k},{mp.nstr(i0 * intensity(*g), 30)}")
             continue
-        rows = {"run": [], "path": [], "cos_t": [], "run_thicker": []}
+        rows = {"run": [], "path": [], "cos_t": []}
         for (n1, n2, d, hs, ho, x, _, _) in points:
             w, op = through(n1, n2, d, hs, ho, x)
             rows["run"].append(2 * d * w)
             rows["path"].append(op)
-            rows["cos_t"].append(1 / mp.sqrt(1 + w * w)
-            )
-            d2 = d * (1 + M("1e-12"))
-            w2, _ = through(n1, n2, d2, hs, ho, x)
-            rows["run_thicker"].append(2 * d2 * w2)
+            rows["cos_t"].append(1 / mp.sqrt(1 + w * w))
         for key, values in rows.items():
             for k, v in enumerate(values):
                 print(f"{name}/{key},{k},{mp.nstr(v, 30)}")

@@ -49,8 +49,8 @@ fn found(n: u32) -> PathBuf {
 }
 
 /// The beam through the plate of case `n`, solved to each of its two probe points, with the
-/// plate and ambient indices.
-fn beams_through(n: u32) -> (Vec<fringe::trace::path::SolvedPath>, f64, f64) {
+/// ambient and plate indices and the plate's top point (m).
+fn beams_through(n: u32) -> (Vec<fringe::trace::path::SolvedPath>, f64, f64, DVec3) {
     let path = found(n);
     let case = load::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap();
     let built = build_scene(&case.spec.scene, &Overrides::default()).unwrap();
@@ -104,21 +104,28 @@ fn beams_through(n: u32) -> (Vec<fringe::trace::path::SolvedPath>, f64, f64) {
             _ => unreachable!(),
         })
         .unwrap();
-    (paths, optics.ambient_index, n_plate)
+    let top_point = built.scene.surfaces[top].plane.point;
+    (paths, optics.ambient_index, n_plate, top_point)
 }
 
 /// The beam through the plate lands on both probe points to 1e-12 of the scene (it stalled at
 /// 7.6e-11 … 5.8e-7 m), and its lateral run inside the plate, its optical path and its cos θt
 /// are those of 50 digits: the run to 1e-14 of itself (main's stalled launch was 2e-11 of it
-/// off in scene 271, 5.4e-9 m at 248 m), the optical path to 1e-15 of itself, and cos θt (which
-/// the traced ray forms from the launch's (n0 cos θ0)² in double-double, so to ~1e-32 n0²/q_t²)
-/// within that bound.
+/// off in scene 271, 5.4e-9 m at 248 m); cos θt, which the traced ray forms from the launch's
+/// (n0 cos θ0)² in double-double, to that square's rounding, 4·2⁻¹⁰⁴ n0²/q_t² relative (up to
+/// 5e-4 in scene 6899, where cos θt = 8.5e-13: the beam's amplitude, ∝ cos θt, is that far off,
+/// and it is below the gate's tolerance); and the optical path to the scene's representation:
+/// a rotated plate's unit normal is held in f64, which tilts the plate by ~2⁻⁵³ rad about its
+/// top point against the written scene the 50 digits evaluate, and moves the heights of source
+/// and probe, and the steep outer legs with them, by ≤ u |x − top| (u = 2⁻⁵²): bound
+/// 4u (n0 (|s − top| + |p − top|) + path). A flat 1e-15 of the path, tried first, failed scene
+/// 9551 (rotated: 3.8e-15 m, 3.2e-15 of its 1.2 m path); the unrotated scenes are exact.
 #[test]
 fn the_beam_through_a_grazing_plate_lands_on_the_exact_path() {
     let truth = crate::support::mpmath_profiles("plate_landing_paths_mpmath.csv");
     for n in FOUND {
         let name = format!("fuzz_two_beam_plate_s1_{n}");
-        let (paths, n0, n2) = beams_through(n);
+        let (paths, n0, n2, top) = beams_through(n);
         for (k, path) in paths.iter().enumerate() {
             let (source, target) = (path.points[0], *path.points.last().unwrap());
             let scale = (target - source).length();
@@ -132,18 +139,21 @@ fn the_beam_through_a_grazing_plate_lands_on_the_exact_path() {
             .to_f64();
             let cos_t = q_t2.sqrt() / n2;
             let run_err = (run - run_true).abs() / run_true;
-            let op_err = (path.optical_path_m() - op_true).abs() / op_true;
+            let op_err = (path.optical_path_m() - op_true).abs();
+            let op_bound = 4.0
+                * f64::EPSILON
+                * (n0 * ((source - top).length() + (target - top).length()) + op_true);
             let cos_err = (cos_t - cos_true).abs() / cos_true;
             let cos_bound = 4.0 * 2f64.powi(-104) * n0 * n0 / q_t2 + 1e-15;
             println!(
                 "{name} point {k}: landing {:e} m (tolerance {:e}), run {run:e} m err {run_err:.1e}, \
-                 optical path err {op_err:.1e}, cos θt {cos_t:e} err {cos_err:.1e} (bound {cos_bound:.1e})",
+                 optical path err {op_err:.1e} m (bound {op_bound:.1e}), cos θt {cos_t:e} err {cos_err:.1e} (bound {cos_bound:.1e})",
                 path.landing_error,
                 1e-12 * scale
             );
             assert!(path.landing_error <= 1e-12 * scale, "{name} {k}");
             assert!(run_err <= 1e-14, "{name} {k}: run {run_err:e}");
-            assert!(op_err <= 1e-15, "{name} {k}: optical path {op_err:e}");
+            assert!(op_err <= op_bound, "{name} {k}: optical path {op_err:e} m");
             assert!(cos_err <= cos_bound, "{name} {k}: cos θt {cos_err:e}");
         }
     }
