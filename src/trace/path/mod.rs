@@ -573,7 +573,7 @@ pub fn solve(
         _ => None,
     };
     let launch_q2 = stack.map(|(_, q2, _)| q2);
-    let launch_p2 = stack.map(|(_, (m, _), p2)| (m, p2));
+    let launch_p2 = stack.map(|(_, (m, _), invariant)| (m, invariant));
     if let Some((d, _, _)) = stack {
         guess_dir = d;
     } else if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) =

@@ -20,9 +20,9 @@ pub(super) struct PlaneStep {
     pub(super) refraction_factor: f64,
     /// The normal and (n cos θ)² after the event, in double-double (`Ray::normal_q2`).
     pub(super) q2: (DVec3, DoubleDouble),
-    /// The normal and Snell's invariant p² = (n sin θ)² about it, in double-double: what
+    /// The normal and Snell's invariant p² = (n sin θ)² about it ([`Invariant`]): what
     /// [`trace_planes_carrying`] carries to the next parallel face (docs/PHYSICS.md §8).
-    pub(super) p2: (DVec3, DoubleDouble),
+    pub(super) p2: (DVec3, Invariant),
 }
 
 /// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`, carrying
@@ -49,8 +49,44 @@ pub(super) fn step_planes(
 pub(super) enum Carried {
     /// (n cos θ)² in the ray's medium (`Ray::normal_q2`).
     NormalQ2(DoubleDouble),
-    /// Snell's invariant p² = (n sin θ)².
-    TangentialP2(DoubleDouble),
+    /// Snell's invariant p² = (n sin θ)² ([`Invariant`]).
+    TangentialP2(Invariant),
+}
+
+/// Snell's invariant p² = (n sin θ)² held as p² = n_ref² − q²_ref: the squared normal
+/// wavevector q²_ref = (n_ref cos θ_ref)² of the segments in index `n_ref` (double-double).
+/// In any index n of the stack the normal wavevector square is then
+/// (n cos θ)² = (n² − n_ref²) + q²_ref, and exactly q²_ref in n_ref itself: a beam grazing in
+/// n_ref (cos θ ~ 1e-11) keeps its cosine to the relative precision of q²_ref, where forming it
+/// as n_ref² − p² from p² rounded to double-double (~1e-32 of p²) loses it to ~1e-32/cos²θ
+/// (1e-10 of tan θ: a 1.2 nm plate of n = 0.0065 in air crossed 248 m sideways missed its
+/// probe by 5e-9 m, `fringe fuzz --family two_beam_plate --seed 1`, scene 271;
+/// `tests/suite/truth_plate_landing.rs`). `n_ref = 0` holds p² itself (q²_ref = −p²).
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Invariant {
+    /// The reference index n_ref (0: q²_ref is −p²).
+    pub(super) n_ref: f64,
+    /// (n_ref cos θ_ref)², double-double.
+    pub(super) q2_ref: DoubleDouble,
+}
+
+impl Invariant {
+    /// p² itself (`n_ref` = 0).
+    pub(super) fn from_p2(p2: DoubleDouble) -> Self {
+        Invariant {
+            n_ref: 0.0,
+            q2_ref: -p2,
+        }
+    }
+
+    /// (n cos θ)² in index `n` (double-double, [`Invariant`]).
+    pub(super) fn q2_in(self, n: f64) -> DoubleDouble {
+        if n == self.n_ref {
+            self.q2_ref
+        } else {
+            two_prod(n, n) - two_prod(self.n_ref, self.n_ref) + self.q2_ref
+        }
+    }
 }
 
 /// [`step_planes`] for a ray carrying Snell's invariant p² = (n sin θ)² about the normal of
@@ -78,15 +114,15 @@ pub(super) fn step_planes_carried(
     let (n1, n2) = indices_for(so, normal, d, n);
     let carried = carried.filter(|(m, _)| *m == normal || *m == -normal);
     let (q2_i, q2_t, p2) = match carried {
-        Some((_, Carried::TangentialP2(p2))) => (two_prod(n1, n1) - p2, two_prod(n2, n2) - p2, p2),
+        Some((_, Carried::TangentialP2(inv))) => (inv.q2_in(n1), inv.q2_in(n2), inv),
         Some((m, Carried::NormalQ2(q2))) => {
             let (q2_i, q2_t) =
                 interaction::normal_wavevector_squares(d, normal, (n1, n2), Some((m, q2)));
-            (q2_i, q2_t, two_prod(n1, n1) - q2_i)
+            (q2_i, q2_t, Invariant::from_p2(two_prod(n1, n1) - q2_i))
         }
         None => {
             let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), None);
-            (q2_i, q2_t, two_prod(n1, n1) - q2_i)
+            (q2_i, q2_t, Invariant::from_p2(two_prod(n1, n1) - q2_i))
         }
     };
     let carried = carried.map(|(m, _)| (m, q2_i));
@@ -192,7 +228,7 @@ fn tunnel_step(
     ev: Event,
     (d, normal): (DVec3, DVec3),
     (n1, n2): (f64, f64),
-    (q2_i, q2_t, p2): (DoubleDouble, DoubleDouble, DoubleDouble),
+    (q2_i, q2_t, p2): (DoubleDouble, DoubleDouble, Invariant),
     x: DVec3,
 ) -> Result<PlaneStep, PathError> {
     let no = PathError::NoTunnel { event: k };
@@ -237,7 +273,7 @@ pub(super) fn trace_planes(
 pub(super) fn trace_planes_carrying(
     scene: &Scene,
     optics: &SceneOptics,
-    (origin, dir, carried): (DVec3, DVec3, Option<(DVec3, DoubleDouble)>),
+    (origin, dir, carried): (DVec3, DVec3, Option<(DVec3, Invariant)>),
     seq: &[Event],
     g: &mut Geometry,
 ) -> Result<(), PathError> {
@@ -379,9 +415,11 @@ impl LaunchModel {
 /// indices depend only on the sequence, not on the launch angle.
 ///
 /// Returns the launch direction, with ν the launch's q0² = (n0 cos θ0)² = (n0 − p)(n0 + p) in
-/// double-double (the tracer's ray carries it, `Ray::normal_q2`) and p² (the path solver's
-/// [`trace_planes_carrying`] carries it), so every segment's cosine is formed from the
-/// invariant p, not from the f64 launch direction, whose rounding (~1e-16 of sin θ0)
+/// double-double (the tracer's ray carries it, `Ray::normal_q2`) and Snell's invariant (the
+/// path solver's [`trace_planes_carrying`] carries it; where the beam grazes in the least index
+/// n_g of the stack, held as that medium's own (n_g cos θ_g)², [`grazing_invariant`]), so every
+/// segment's cosine is formed from the invariant, not from the f64 launch direction, whose
+/// rounding (~1e-16 of sin θ0)
 /// is a relative error of ~1e-16/cos²θk in a segment grazing at θk (the beam through a plate
 /// less dense than its ambient, just below the critical angle, at tan θt up to 1e8 and beyond:
 /// it did not land, `fringe fuzz --family two_beam_plate --seed 1`, scenes 23, 25, 26).
@@ -391,7 +429,7 @@ pub(super) fn parallel_stack_launch(
     seq: &[Event],
     source: DVec3,
     target: DVec3,
-) -> Option<(DVec3, (DVec3, DoubleDouble), DoubleDouble)> {
+) -> Option<(DVec3, (DVec3, DoubleDouble), Invariant)> {
     use crate::optics::double_double::two_diff;
     let nu = scene.surfaces[seq.first()?.surface].plane.normal;
     // The target relative to the source from exact coordinate differences, split along ν and
@@ -537,11 +575,95 @@ pub(super) fn parallel_stack_launch(
         }
         p
     };
+    let invariant = grazing_invariant(runs, d, p).unwrap_or(Invariant::from_p2(p * p));
+    let p = if invariant.n_ref == 0.0 {
+        p
+    } else {
+        (two_prod(invariant.n_ref, invariant.n_ref) - invariant.q2_ref).sqrt()
+    };
     let sin0 = (p / dd(n0)).to_f64();
-    let q0_sq = (dd(n0) - p) * (dd(n0) + p);
+    let q0_sq = if invariant.n_ref == 0.0 {
+        (dd(n0) - p) * (dd(n0) + p)
+    } else {
+        invariant.q2_in(n0)
+    };
     let cos0 = (q0_sq.sqrt() / dd(n0)).to_f64();
     let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
-    Some((sin0 * u + cos0 * first_up * nu, (nu, q0_sq), p * p))
+    Some((sin0 * u + cos0 * first_up * nu, (nu, q0_sq), invariant))
+}
+
+/// Snell's invariant of a stack launch as the normal wavevector of its grazing medium
+/// ([`Invariant`] about the least index n_g of `runs`, (height, index) per medium), refined
+/// from the root `p` of [`parallel_stack_launch`]'s lateral-run equation where the beam
+/// grazes there (s = q²_g = n_g² − p² < n_g²/2); `None` otherwise (p² is then held as it is).
+///
+/// Near grazing in n_g the root p is within ~1e-31 of n_g, and s = (n_g − p)(n_g + p) keeps
+/// only the digits of p that exceed that: relative ~1e-32/cos²θ_g, 1e-10 at cos θ_g = 1e-11.
+/// Newton's method on s itself, with
+///
+/// F(s) = Σ_k h_k p/q_k − D,  p = √(n_g² − s),  q_k = √(n_k² − n_g² + s),
+/// F'(s) = −Σ_k h_k n_k²/(2 p q_k³) < 0,
+///
+/// (F in double-double, F' in f64) conditions the grazing run h_g p/√s to the relative
+/// precision of s (d ln F/d ln s → −1/2): s, and with it cos θ_g and the lateral run
+/// 2 d tan θ_g, to ~1e-31 of themselves. Safeguarded by bisection on the bracket it keeps.
+fn grazing_invariant(runs: &[(f64, f64)], d: f64, p: DoubleDouble) -> Option<Invariant> {
+    let dd = DoubleDouble::from_f64;
+    let n_g = runs.iter().map(|r| r.1).fold(f64::INFINITY, f64::min);
+    let n_g2 = two_prod(n_g, n_g);
+    let mut s = (dd(n_g) - p) * (dd(n_g) + p);
+    if !(s.hi > 0.0 && s.hi < 0.5 * n_g2.hi) || d == 0.0 {
+        return None;
+    }
+    let inv = |s: DoubleDouble| Invariant {
+        n_ref: n_g,
+        q2_ref: s,
+    };
+    // F(s) (double-double) and F'(s) (f64).
+    let f = |s: DoubleDouble| -> Option<(DoubleDouble, f64)> {
+        let p = (n_g2 - s).sqrt();
+        let pf = p.to_f64();
+        runs.iter().try_fold((dd(-d), 0.0), |(f, df), &(h, n)| {
+            let q2 = inv(s).q2_in(n);
+            if q2.hi <= 0.0 {
+                return None;
+            }
+            let q = q2.sqrt();
+            let qf = q.to_f64();
+            Some((f + (p * h) / q, df - h * n * n / (2.0 * pf * qf * qf * qf)))
+        })
+    };
+    // F > 0 where s is too small (the beam too grazing): the root lies above.
+    let (mut lo, mut hi) = (dd(0.0), n_g2);
+    for _ in 0..128 {
+        let (fs, dfs) = f(s)?;
+        if fs.hi == 0.0 {
+            break;
+        }
+        if fs.hi > 0.0 {
+            lo = s
+        } else {
+            hi = s
+        }
+        let step = fs.to_f64() / dfs;
+        if !step.is_finite() {
+            break;
+        }
+        let newton = s - dd(step);
+        if step.abs() <= 1e-31 * s.hi {
+            s = newton;
+            break;
+        }
+        s = if (newton - lo).hi > 0.0 && (hi - newton).hi > 0.0 {
+            newton
+        } else {
+            (lo + hi).mul_f64(0.5)
+        };
+        if (hi - lo).hi <= 1e-31 * s.hi {
+            break;
+        }
+    }
+    (s.hi > 0.0).then(|| inv(s))
 }
 
 /// [`cannot_reach`] for a sequence on parallel planes.

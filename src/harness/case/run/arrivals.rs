@@ -100,9 +100,10 @@ pub(super) fn arrivals_at(
         ) && required.iter().any(|q| f.sequence.iter().eq(q.iter()))
     }) {
         return Err(format!(
-            "the path solver could not land the path {} on a probe point ({}): f64 ray \
-             directions cannot resolve it to 1e-12 of the scene (an extreme index contrast or \
-             grazing incidence; README \"fuzz\")",
+            "the path solver could not land the path {} on a probe point ({}): the beam \
+             exists (Snell's invariant has its root at any lateral distance) but the solver did \
+             not find it to 1e-12 of the scene; the case is refused rather than traced without \
+             it (a solver defect, not a limit of the scene: report it)",
             crate::trace::path::sequence_label(f.sequence.iter()),
             f.error
         ));
