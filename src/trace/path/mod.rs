@@ -787,12 +787,11 @@ pub fn solve(
     // with the directions after it (from the line's own foot the first segment of a Lloyd
     // mirror's reflected path turned by that rounding over the first segment alone, and 44 of
     // `fringe fuzz --family lloyd --count 2000 --seed 1` failed).
-    if let (Emitter::Line { point, axis }, [_, first]) = (emitter, &g.points[..]) {
-        if let Some(d) =
+    if let (Emitter::Line { point, axis }, [_, first]) = (emitter, &g.points[..])
+        && let Some(d) =
             crate::scene::source::line_launch_direction(point, axis.normalize(), *first)
-        {
-            g.dirs[0] = d;
-        }
+    {
+        g.dirs[0] = d;
     }
     // A plane wave's launch point is meant to lie on its reference plane, but it is formed in
     // f64 (base + p·e1 + p·e2) and sits off that plane by a rounding of its distance from the
