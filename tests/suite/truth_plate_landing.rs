@@ -184,3 +184,72 @@ fn every_formerly_unlanded_scene_passes_the_fuzz_gate() {
     }
     assert!(bad.is_empty(), "{bad:#?}");
 }
+
+/// Scenes 5672, 6363 and 6541 of `fringe fuzz --family two_beam_plate --seed 1` (micrometre
+/// plates translated hundreds of metres) hold the probe 0.9e-9 … 1.35e-9 rad out of the source's
+/// plane of incidence by rounding alone; the `two_beam_plate` reference refused anything beyond
+/// 1e-9. The two channels then mix s and p by that angle ε, which moves the channel sum by
+/// O(ε²) (≤ 2ε² = 8e-14 at the reference's bound of 2e-7): they are judged, and pass.
+const OFF_PLANE_BY_ROUNDING: [usize; 3] = [5672, 6363, 6541];
+
+/// The case of two_beam_plate scene `index` (seed 1) with its polarization reference turned by
+/// `eps` rad toward n × reference (in the plate's plane, out of the plane of incidence).
+fn with_reference_turned(index: usize, eps: f64) -> serde_json::Value {
+    let sc = fuzz::scene(Family::TwoBeamPlate, 1, index, None);
+    let mut case = sc.case.expect("the generator builds it");
+    let vec3 = |v: &serde_json::Value| {
+        let a = v.as_array().expect("a 3-vector");
+        DVec3::new(
+            a[0].as_f64().unwrap(),
+            a[1].as_f64().unwrap(),
+            a[2].as_f64().unwrap(),
+        )
+    };
+    let n = vec3(
+        &case["scene"]["surfaces"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .find_map(|s| s.get("plate"))
+            .expect("a plate")["normal"],
+    );
+    let pol = &mut case["scene"]["sources"][0]["polarization"]["unpolarized"]["reference"];
+    let r = vec3(pol);
+    let turned = (r + eps * n.cross(r).normalize()).normalize();
+    *pol = serde_json::json!([turned.x, turned.y, turned.z]);
+    case
+}
+
+#[test]
+fn references_off_the_plane_by_rounding_are_judged_and_pass() {
+    let mut bad = Vec::new();
+    for &i in &OFF_PLANE_BY_ROUNDING {
+        for eps in [0.0, 1e-8] {
+            let v = fuzz::judge(
+                &with_reference_turned(i, eps),
+                &PathBuf::from(format!("fuzz_two_beam_plate_s1_{i}.json")),
+            );
+            if !matches!(v, Verdict::Pass { .. }) {
+                bad.push(format!("scene {i}, turned {eps}: {v:?}"));
+            }
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+/// A reference turned 1e-5 rad out of the plane of incidence (beyond the 2e-7 bound) is
+/// still refused with the reason, never judged.
+#[test]
+fn a_reference_visibly_off_the_plane_of_incidence_is_refused() {
+    let v = fuzz::judge(
+        &with_reference_turned(OFF_PLANE_BY_ROUNDING[0], 1e-5),
+        &PathBuf::from("off_plane.json"),
+    );
+    match v {
+        Verdict::Refused { reason } => assert!(
+            reason.contains("perpendicular to every plane of incidence"),
+            "{reason}"
+        ),
+        other => panic!("not refused: {other:?}"),
+    }
+}

@@ -389,7 +389,15 @@ pub fn value(
             let basis_free = match src.polarization {
                 crate::scene::source::Polarization::Unpolarized => true,
                 crate::scene::source::Polarization::UnpolarizedTwoChannel { reference } => {
-                    if reference.dot(horiz).abs() > 1e-9 * horiz.length()
+                    // Off the plane of incidence by an angle ε (a micrometre scene translated
+                    // hundreds of metres holds p − s to ~1e-9 of itself), the channels mix s
+                    // and p by ε; s and p fields are orthogonal at the probe, so the sum over
+                    // the channels moves by O(ε²) of the profile: ≤ 2ε² = 8e-14 at ε = 2e-7,
+                    // below the gate's least tolerance (1e-12, `fuzz::DERIVED_FLOOR`). The
+                    // reference refused 1e-9 (`fringe fuzz --family two_beam_plate --seed 1`,
+                    // scenes 5672, 6363, 6541).
+                    const OFF_PLANE: f64 = 2e-7;
+                    if reference.dot(horiz).abs() > OFF_PLANE * horiz.length()
                         || reference.dot(nrm).abs() > 1e-12
                     {
                         return Err("two_beam_plate: the source's polarization reference must be perpendicular to every plane of incidence (the probe must lie in one plane of incidence)".into());
