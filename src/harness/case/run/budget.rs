@@ -255,7 +255,11 @@ fn point_work(
         if let Some(w0) = previous {
             let p = (total / w0).log2().max(0.0);
             let grow = (full.max_events as f64 / depth as f64).powf(p);
-            if total * grow > cap {
+            // Stop early only where the refusal is clear: the work counted so far already
+            // exceeds the cap, or the extrapolation exceeds it 4-fold (from a shallow depth it
+            // can overshoot a polynomial growth by a third: the walked Airy plate at m = 2000,
+            // whose part in m² takes over only with depth; it under-counts an exponential one).
+            if total > cap || total * grow > 4.0 * cap {
                 let predicted = PointWork {
                     linear: work.linear * grow,
                     quadratic: work.quadratic * grow,
