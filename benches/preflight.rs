@@ -93,7 +93,7 @@ fn main() {
         "rate: {SECONDS_PER_WORK_UNIT:.2e} CPU-s per work unit; cap {MAX_PATH_EVENTS:.0e} units"
     );
     println!(
-        "| scene | work units | estimate (CPU-s) | measured CPU-s | wall s | measured / estimate |"
+        "| scene | work units (∝ m + ∝ m²) | estimate (CPU-s) | measured CPU-s | wall s | measured / estimate |"
     );
     println!("| --- | --- | --- | --- | --- | --- |");
     for (name, file, doc) in scenes() {
@@ -102,8 +102,8 @@ fn main() {
         }
         let text = serde_json::to_string_pretty(&doc).unwrap();
         let case = load::parse(&file, &text).expect("valid case");
-        let units = match run::preflight(&case) {
-            Ok(u) => u,
+        let (units, parts) = match run::work_estimate(&case) {
+            Ok(e) => (e.units(), e),
             Err(e) => {
                 println!("| {name} | refused: {} | | | | |", e.message);
                 continue;
@@ -115,7 +115,9 @@ fn main() {
         let (cpu, wall) = (cpu_seconds() - c0, t0.elapsed().as_secs_f64());
         std::hint::black_box(result);
         println!(
-            "| {name} | {units:.2e} | {estimate:.3} | {cpu:.2} | {wall:.2} | {:.2} |",
+            "| {name} | {units:.2e} ({:.2e} + {:.2e}) | {estimate:.3} | {cpu:.2} | {wall:.2} | {:.2} |",
+            parts.linear_units,
+            parts.quadratic_units,
             cpu / estimate
         );
     }

@@ -11,10 +11,16 @@ use crate::output::{figures, report};
 use rayon::prelude::*;
 use std::path::Path;
 
-/// `fringe check`: evaluate the cases (`check::evaluate`), then write the reports (each
-/// file atomically, one run at a time per `--out`), the paper's figures when the whole library
-/// runs, the report page, and with `--bless` the golden files of a passing run as one set.
+/// `fringe check`: evaluate the cases (`check::evaluate`) and, side by side with them when
+/// the whole library runs, compute the paper's figures in memory; then write the reports (each
+/// file atomically, one run at a time per `--out`), the figures, the report page, and with
+/// `--bless` the golden files of a passing run as one set. Nothing is written for a refused
+/// case.
 pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
+    let whole_library = opts.cases.is_empty();
+    let (evaluation, figures) = check::evaluate(opts, || {
+        whole_library.then(|| figures::compute(&figures::FigureOptions::check_default()))
+    })?;
     let check::Evaluation {
         cases,
         results,
@@ -23,7 +29,7 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
         goldens,
         golden_folders,
         sweep,
-    } = check::evaluate(opts)?;
+    } = evaluation;
     // The stability plot is drawn before anything is written.
     let stability_png = report::plot::stability_paths_png(&sweep.paths).map_err(InputError)?;
 
@@ -33,8 +39,8 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
     let out_lock = crate::io::lock_dir(&opts.out).map_err(|e| io(&opts.out, e))?;
     crate::io::remove_stale_temp_files(&opts.out).map_err(|e| io(&opts.out, e))?;
     // Each case's files (in parallel: each case has its own folder), and beside them the
-    // paper's figures when the whole library runs (src/output/figures.rs); the first error in
-    // case order is reported.
+    // paper's figures computed during the evaluation (src/output/figures.rs); the first error
+    // in case order is reported.
     let write_case = |(case, r): (&Case, &CaseResult)| -> Result<(), InputError> {
         let dir = opts.out.join(&r.name);
         crate::io::remove_stale_temp_files(&dir).map_err(|e| io(&dir, e))?;
@@ -57,9 +63,11 @@ pub fn check(opts: &CheckOptions) -> Result<CheckOutcome, InputError> {
                 .collect::<Vec<_>>()
         },
         || {
-            opts.cases
-                .is_empty()
-                .then(|| figures::generate(&opts.out, &figures::FigureOptions::check_default()))
+            figures.map(|set| {
+                let set = set?;
+                figures::write(&opts.out, &set)?;
+                Ok::<_, String>(set.manifest)
+            })
         },
     );
     written.into_iter().collect::<Result<(), _>>()?;

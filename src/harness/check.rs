@@ -343,7 +343,14 @@ pub(crate) struct Evaluation {
 /// writes are writable, run the cases and the stability sweep, and compare with the closed
 /// forms and the golden files. Writes nothing but the recovery of an interrupted bless: the
 /// reports and a bless are written by the command layer (`fringe::cli::check`).
-pub(crate) fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
+///
+/// `alongside` runs side by side with the cases and the sweep once every case has passed its
+/// preflight and the folders are shown writable (the command layer computes the paper's
+/// figures there, in memory); its value is returned with the evaluation.
+pub(crate) fn evaluate<T: Send>(
+    opts: &CheckOptions,
+    alongside: impl FnOnce() -> T + Send,
+) -> Result<(Evaluation, T), InputError> {
     let files = resolve(opts)?;
     let cases: Vec<Case> = files
         .iter()
@@ -359,8 +366,14 @@ pub(crate) fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
             )));
         }
     }
-    // Every case's work is checked before any runs: a refused case costs nothing.
-    let work: Vec<f64> = cases.iter().map(run::preflight).collect::<Result<_, _>>()?;
+    // Every case's work is checked before any runs: a refused case costs nothing. The cases
+    // are counted side by side; the first refused one in file order is the error reported.
+    let work: Vec<f64> = cases
+        .par_iter()
+        .map(run::preflight)
+        .collect::<Vec<_>>()
+        .into_iter()
+        .collect::<Result<_, _>>()?;
     // So are the folders the run writes: a bad `--out` is found before the tracing, not after.
     let unwritable = |what: &str, dir: &Path, e: std::io::Error| {
         InputError(format!(
@@ -388,11 +401,17 @@ pub(crate) fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
             crate::io::recover_bless(g).map_err(|e| unwritable("the golden folder", g, e))?;
         }
     }
-    // The cases (each parallel over its probe points) and the stability sweep run side by
-    // side; the first failing case in file order is the error reported.
-    let (results, sweep) = rayon::join(
-        || cases.par_iter().map(run::run).collect::<Vec<_>>(),
-        stability::sweep,
+    // The cases (each parallel over its probe points), the stability sweep and `alongside`
+    // run side by side, the cases (the longest part) first; the first failing case in file
+    // order is the error reported.
+    let ((results, sweep), beside) = rayon::join(
+        || {
+            rayon::join(
+                || cases.par_iter().map(run::run).collect::<Vec<_>>(),
+                stability::sweep,
+            )
+        },
+        alongside,
     );
     let results: Vec<CaseResult> = results.into_iter().collect::<Result<_, _>>()?;
 
@@ -481,7 +500,7 @@ pub(crate) fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
 
     // The stability sweep: judged like a case.
     rows.extend(stability_table_rows(&sweep));
-    Ok(Evaluation {
+    let evaluation = Evaluation {
         cases,
         results,
         work,
@@ -489,5 +508,6 @@ pub(crate) fn evaluate(opts: &CheckOptions) -> Result<Evaluation, InputError> {
         goldens,
         golden_folders: golden_folders.into_iter().cloned().collect(),
         sweep,
-    })
+    };
+    Ok((evaluation, beside))
 }

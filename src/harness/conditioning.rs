@@ -38,14 +38,14 @@
 //! rounding an f64 scene holds it to (docs/PHYSICS.md §8, "Representation sensitivity").
 
 use crate::accumulate::fidelity::Fidelity;
-use crate::accumulate::phasor_from_cycles;
+use crate::accumulate::{Contribution, phasor_from_cycles};
 use crate::optics::double_double::{DoubleDouble, two_prod};
 use crate::optics::fresnel;
 use crate::optics::interaction::{Layer, SurfaceOptics, indices_for};
 use crate::optics::ray::INCOHERENT;
 use crate::scene::{Scene, SceneOptics};
+use crate::trace::Arrival;
 use crate::trace::path::EventKind;
-use crate::trace::{self, Arrival};
 use glam::DVec3;
 use num_complex::Complex64;
 use std::collections::{BTreeMap, HashMap};
@@ -219,10 +219,13 @@ fn from_plane_wave(scene: &Scene, a: &Arrival) -> bool {
 /// The bound (module docs) on the rounding error of the `vector` intensity of `arrivals` at
 /// vacuum wavelength `lambda_m`, phases referred to the optical path `reference` (the first
 /// arrival's, as the traced value refers them), in the units of the traced |E|². `scene` and
-/// `optics` are the ones traced (the surfaces the events name).
+/// `optics` are the ones traced (the surfaces the events name); `vector` holds the arrivals'
+/// `vector` contributions in order (`trace::contribution_from(a, Fidelity::Vector, reference)`,
+/// which the caller has formed already).
 pub fn intensity_rounding(
     arrivals: &[Arrival],
     reference: DoubleDouble,
+    vector: &[Contribution],
     lambda_m: f64,
     scene: &Scene,
     optics: &SceneOptics,
@@ -231,8 +234,8 @@ pub fn intensity_rounding(
     // Per coherence group: (Σ E_k e^{iφ}, Σ|E_k|, Σ|E_k|(δφ_k + δa_k), n).
     let mut groups: BTreeMap<u64, ([Complex64; 3], f64, f64, usize)> = BTreeMap::new();
     let mut singles = Vec::new();
-    for a in arrivals {
-        let c = trace::contribution_from(a, Fidelity::Vector, reference);
+    debug_assert_eq!(arrivals.len(), vector.len());
+    for (a, c) in arrivals.iter().zip(vector) {
         let e = c.field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
         let ds = (a.vector.optical_path - reference).to_f64().abs();
         let dphi = std::f64::consts::TAU * cu * (ds / lambda_m + 1.0);
@@ -339,10 +342,11 @@ pub const DIRECTION_ROUNDING: f64 = 2.0 * UNIT_ROUNDOFF;
 /// positions are held to u|X| in every frame, which the path terms of
 /// [`intensity_rounding`] already carry) and for a single arrival. A closed Airy tail counts
 /// at the offsets of the order it starts from (its further orders carry at most the tail
-/// bound's share of the field).
+/// bound's share of the field). `vector`: the arrivals' `vector` contributions, as for
+/// [`intensity_rounding`].
 pub fn direction_sensitivity(
     arrivals: &[Arrival],
-    reference: DoubleDouble,
+    vector: &[Contribution],
     lambda_m: f64,
     scene: &Scene,
 ) -> f64 {
@@ -400,8 +404,8 @@ pub fn direction_sensitivity(
     };
     let mut groups: BTreeMap<u64, ([Complex64; 3], [Complex64; 3])> = BTreeMap::new();
     let mut total = 0.0;
-    for a in arrivals {
-        let c = trace::contribution_from(a, Fidelity::Vector, reference);
+    debug_assert_eq!(arrivals.len(), vector.len());
+    for (a, c) in arrivals.iter().zip(vector) {
         let (x0, x1, _, _, n0, n1) = ends(a);
         let ds_in = e_in.map_or(0.0, |e| n0 * (x0 - r_in).dot(e));
         let ds_out = e_out.map_or(0.0, |e| n1 * (x1 - r_out).dot(e) * turn_out);
@@ -448,10 +452,11 @@ pub fn cosine_rounding(d: DVec3, normal: DVec3) -> f64 {
 /// ([`layer_sensitivity`], κ = |∂coef/∂cos θ|/|coef|). With ρ_k = Σ_e κ_e |dc_e| for arrival k,
 /// δI ≤ Σ_g 2 |E_g| Σ_k ρ_k |E_k| (first order, unsigned). 0 for point and line sources, for
 /// scenes whose faces are not all parallel to the first, and at normal incidence (a turn moves
-/// the cosine only to second order there). In units of the traced |E|².
+/// the cosine only to second order there). In units of the traced |E|². `vector`: the
+/// arrivals' `vector` contributions, as for [`intensity_rounding`].
 pub fn amplitude_sensitivity(
     arrivals: &[Arrival],
-    reference: DoubleDouble,
+    vector: &[Contribution],
     scene: &Scene,
     optics: &SceneOptics,
 ) -> f64 {
@@ -488,8 +493,8 @@ pub fn amplitude_sensitivity(
     let mut shares: HashMap<(usize, EventKind, bool, u64), f64> = HashMap::new();
     let mut groups: BTreeMap<u64, ([Complex64; 3], f64)> = BTreeMap::new();
     let mut total = 0.0;
-    for a in arrivals {
-        let c = trace::contribution_from(a, Fidelity::Vector, reference);
+    debug_assert_eq!(arrivals.len(), vector.len());
+    for (a, c) in arrivals.iter().zip(vector) {
         let e = c.field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
         let mut rho = 0.0;
         // Zipped, not indexed: the far-field walk's paths are shared trails, where `get(i)` walks

@@ -16,6 +16,7 @@ use crate::io::write_atomic;
 use crate::output::render::{self, Image, ImageValues, Request, Screen, Shading, Spectrum};
 use crate::output::report::image::{self as img, DiffStats, Rgb8Image};
 use crate::output::report::plot;
+use rayon::prelude::*;
 use serde::{Deserialize, Serialize};
 use std::path::Path;
 use std::time::Instant;
@@ -186,17 +187,66 @@ pub fn newton_thicknesses_m(step_nm: usize) -> Vec<f64> {
         .collect()
 }
 
+/// The figure set computed in memory: the files of `<out>/figures/` (name and bytes, in the
+/// order [`write`] writes them, `figures.json` last) and the manifest. Nothing is written
+/// until [`write`], so `fringe check` computes it beside the case runs and still writes
+/// nothing when a case is refused.
+pub struct FigureSet {
+    pub manifest: Manifest,
+    files: Vec<(String, Vec<u8>)>,
+}
+
+/// One independent part of the figure set: its files, report entries, settings and timings.
+#[derive(Default)]
+struct Part {
+    files: Vec<(String, Vec<u8>)>,
+    figures: Vec<FigureEntry>,
+    fig8: Vec<Fig8Entry>,
+    settings: Vec<String>,
+    timings: Vec<(String, f64)>,
+}
+
 /// The figure set: writes `<out>/figures/*` and `figures.json`, returns the manifest.
 pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
+    let set = compute(opts)?;
+    write(out, &set)?;
+    Ok(set.manifest)
+}
+
+/// Write a computed figure set to `<out>/figures/`, each file atomically, `figures.json` last.
+pub fn write(out: &Path, set: &FigureSet) -> Result<(), String> {
     let dir = out.join("figures");
-    let write = |name: &str, bytes: &[u8]| {
+    for (name, bytes) in &set.files {
         let p = dir.join(name);
-        write_atomic(&p, bytes).map_err(|e| format!("{}: cannot write: {e}", p.display()))
-    };
-    let mut timings = Vec::new();
-    let mut figures = Vec::new();
+        write_atomic(&p, bytes).map_err(|e| format!("{}: cannot write: {e}", p.display()))?;
+    }
+    Ok(())
+}
+
+/// Compute the figure set (nothing is written). Its four parts are independent and run side
+/// by side, the longest (the plate in white light) first; each render is itself parallel over
+/// its pixels.
+pub fn compute(opts: &FigureOptions) -> Result<FigureSet, String> {
     let (w, h) = opts.size;
-    let adaptation = opts.illuminant.default_adaptation();
+    // The two pictures with progress bars are made one after the other (the bars would
+    // overwrite each other on one terminal).
+    let pictures = || {
+        if opts.progress {
+            (plate_figures(opts), young_figure(opts))
+        } else {
+            rayon::join(|| plate_figures(opts), || young_figure(opts))
+        }
+    };
+    let ((plate, young), (error, newton)) = rayon::join(pictures, || {
+        rayon::join(
+            || {
+                let t = Instant::now();
+                colour_error_study(opts).map(|rows| (rows, t.elapsed().as_secs_f64()))
+            },
+            newton_figures,
+        )
+    });
+    let (young, plate, newton, (colour_error, error_seconds)) = (young?, plate?, newton?, error?);
     let mut settings = vec![
         format!(
             "Pictures are {w}×{h} screen points (one exact trace per pixel centre, no area sampling)."
@@ -205,8 +255,107 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
          brightest pixel (fringe) is full scale."
             .to_string(),
     ];
+    let mut files = Vec::new();
+    let mut figures = Vec::new();
+    let mut timings = Vec::new();
+    let mut fig8 = Vec::new();
+    for part in [young, plate, newton] {
+        files.extend(part.files);
+        figures.extend(part.figures);
+        fig8.extend(part.fig8);
+        settings.extend(part.settings);
+        timings.extend(part.timings);
+    }
+    timings.push(("colour-error study".into(), error_seconds));
+    let csv = crate::io::csv_text(
+        &[
+            "samples",
+            "newton_d65_mean_de00",
+            "newton_d65_max_de00",
+            "newton_e_mean_de00",
+            "newton_e_max_de00",
+            "plate_mean_de00",
+            "plate_max_de00",
+            "plate_seconds",
+        ],
+        colour_error.iter().map(|r| {
+            vec![
+                r.samples.to_string(),
+                format!("{:.6e}", r.newton_d65_mean),
+                format!("{:.6e}", r.newton_d65_max),
+                format!("{:.6e}", r.newton_e_mean),
+                format!("{:.6e}", r.newton_e_max),
+                format!("{:.6e}", r.plate_mean),
+                format!("{:.6e}", r.plate_max),
+                format!("{:.4}", r.plate_seconds),
+            ]
+        }),
+    );
+    files.push(("colour_error.csv".into(), csv.into_bytes()));
+    let series = vec![
+        (
+            "Newton film, D65, mean".to_string(),
+            colour_error
+                .iter()
+                .map(|r| (r.samples, r.newton_d65_mean))
+                .collect(),
+        ),
+        (
+            "Newton film, D65, max".to_string(),
+            colour_error
+                .iter()
+                .map(|r| (r.samples, r.newton_d65_max))
+                .collect(),
+        ),
+        (
+            "plate scene, D65, mean".to_string(),
+            colour_error
+                .iter()
+                .map(|r| (r.samples, r.plate_mean))
+                .collect(),
+        ),
+        (
+            "plate scene, D65, max".to_string(),
+            colour_error
+                .iter()
+                .map(|r| (r.samples, r.plate_max))
+                .collect(),
+        ),
+    ];
+    files.push(("colour_error.png".into(), plot::colour_error_png(&series)?));
+    settings.push(format!(
+        "Colour error: CIEDE2000 of each sample count against the 1 nm grid (471 samples, \
+         360–830 nm); Newton film at 301 thicknesses 0–1500 nm; plate scene (paper_rules) at \
+         {0}×{0} points under D65, exposure from the reference picture.",
+        opts.error_size
+    ));
 
-    // Fig. 3: Young's fringes, monochrome.
+    let newton_csv = files
+        .iter()
+        .map(|(name, _)| name)
+        .filter(|n| n.starts_with("newton_") && n.ends_with(".csv"))
+        .cloned()
+        .collect();
+    let manifest = Manifest {
+        settings,
+        figures,
+        fig8,
+        newton_strip: "newton_strip.png".into(),
+        newton_csv,
+        colour_error,
+        colour_error_plot: "colour_error.png".into(),
+        colour_error_csv: "colour_error.csv".into(),
+        timings,
+    };
+    let json = serde_json::to_string_pretty(&manifest).map_err(|e| e.to_string())?;
+    files.push(("figures.json".into(), json.into_bytes()));
+    Ok(FigureSet { manifest, files })
+}
+
+/// Fig. 3: Young's fringes, monochrome.
+fn young_figure(opts: &FigureOptions) -> Result<Part, String> {
+    let (w, h) = opts.size;
+    let mut part = Part::default();
     let young = young_case()?;
     let t = Instant::now();
     let r = render::render(
@@ -218,14 +367,14 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
             progress: opts.progress,
         },
     )?;
-    timings.push((
+    part.timings.push((
         format!("Fig. 3 Young, {w}×{h}, 1 wavelength"),
         t.elapsed().as_secs_f64(),
     ));
     if let ImageValues::Intensity(i) = &r.images[0].values {
         let pic = img::monochrome(w, h, i, r.display_lambda_m, img::peak(i));
-        write("fig3_young.png", &pic.png()?)?;
-        figures.push(FigureEntry {
+        part.files.push(("fig3_young.png".into(), pic.png()?));
+        part.figures.push(FigureEntry {
             file: "fig3_young.png".into(),
             title: "Fig. 3 — Young's fringes".into(),
             caption: format!(
@@ -235,8 +384,15 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
             ),
         });
     }
+    Ok(part)
+}
 
-    // Figs. 5–7: the plate in white light, every rung from the same paths.
+/// Figs. 5–7: the plate in white light, every rung from the same paths; Fig. 8: their 8-bit
+/// differences, as the paper reports them.
+fn plate_figures(opts: &FigureOptions) -> Result<Part, String> {
+    let (w, h) = opts.size;
+    let mut part = Part::default();
+    let adaptation = opts.illuminant.default_adaptation();
     let plate = plate_case()?;
     let integrator = SpectralIntegrator::new(&visible_grid(opts.samples)?, opts.illuminant)?;
     let t = Instant::now();
@@ -249,7 +405,7 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
             progress: opts.progress,
         },
     )?;
-    timings.push((
+    part.timings.push((
         format!(
             "Figs. 5–7 plate, {w}×{h}, {} wavelengths, 6 shadings",
             opts.samples
@@ -257,7 +413,7 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
         t.elapsed().as_secs_f64(),
     ));
     let exposure = img::exposure_for_peak_y(r.images.iter().map(xyz_of));
-    settings.push(format!(
+    part.settings.push(format!(
         "Figs. 5–8: white light, {} wavelengths uniform over {:.0}–{:.0} nm, illuminant {} \
          (adaptation {}), CIE 1931 2°; XYZ × {:.4} so that the brightest Y over all six plate \
          pictures is 1 (one exposure for all, so they compare), then the IEC sRGB matrix, clipping \
@@ -306,9 +462,14 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
             "One scalar ray per path carrying the total unpolarized power, the π jump for every reflection from the denser side (the ⊥ rule for all rays): overstates the fringe contrast except at normal incidence and at Brewster's angle.",
         ),
     ];
-    for ((file, title, what), pic) in plate_files.iter().zip(&pictures) {
-        write(file, &pic.png()?)?;
-        figures.push(FigureEntry {
+    // The PNGs are encoded in parallel, kept in this order.
+    let pngs: Vec<Vec<u8>> = pictures
+        .par_iter()
+        .map(|pic| pic.png())
+        .collect::<Result<_, _>>()?;
+    for ((file, title, what), png) in plate_files.iter().zip(pngs) {
+        part.files.push((file.to_string(), png));
+        part.figures.push(FigureEntry {
             file: file.to_string(),
             title: title.to_string(),
             caption: what.to_string(),
@@ -316,19 +477,25 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
     }
 
     // Fig. 8: 8-bit differences, as the paper reports them.
-    let mut fig8 = Vec::new();
-    let mut stats_text = String::new();
-    for (left, right, file) in [
+    let pairs = [
         (2usize, 3usize, "fig8_scalar_jump_vs_paper_rules.png"),
         (5, 3, "fig8_unpolarized_scalar_jump_vs_paper_rules.png"),
         (4, 3, "fig8_vector_vs_paper_rules.png"),
-    ] {
-        let stats = img::diff_stats(&pictures[left], &pictures[right])?;
-        let (pic, factor) = img::stretched_difference(&pictures[left], &pictures[right])?;
-        write(file, &pic.png()?)?;
+    ];
+    let diffs: Vec<(DiffStats, Vec<u8>, f64)> = pairs
+        .par_iter()
+        .map(|&(left, right, _)| {
+            let stats = img::diff_stats(&pictures[left], &pictures[right])?;
+            let (pic, factor) = img::stretched_difference(&pictures[left], &pictures[right])?;
+            Ok::<_, String>((stats, pic.png()?, factor))
+        })
+        .collect::<Result<_, _>>()?;
+    let mut stats_text = String::new();
+    for ((left, right, file), (stats, png, factor)) in pairs.into_iter().zip(diffs) {
+        part.files.push((file.to_string(), png));
         let (ln, rn) = (PLATE_SHADINGS[left].name(), PLATE_SHADINGS[right].name());
         stats_text.push_str(&fig8_text(&ln, &rn, &stats));
-        fig8.push(Fig8Entry {
+        part.fig8.push(Fig8Entry {
             left: ln,
             right: rn,
             file: file.to_string(),
@@ -336,118 +503,40 @@ pub fn generate(out: &Path, opts: &FigureOptions) -> Result<Manifest, String> {
             stretch_factor: factor,
         });
     }
-    write("fig8_stats.txt", stats_text.as_bytes())?;
+    part.files
+        .push(("fig8_stats.txt".into(), stats_text.into_bytes()));
+    Ok(part)
+}
 
-    // Newton's colour sequence.
+/// Newton's colour sequence: a CSV per illuminant and the strip of both.
+fn newton_figures() -> Result<Part, String> {
+    let mut part = Part::default();
     let t = Instant::now();
     let thick = newton_thicknesses_m(1);
     let cie = WavelengthGrid::cie_1nm();
     let mut bands = Vec::new();
-    let mut newton_csv = Vec::new();
     for (ill, adapt) in [
         (Illuminant::D65, Adaptation::None),
         (Illuminant::E, Adaptation::Bradford),
     ] {
         let csv = colour::write_newton_csv(NEWTON_N, &thick, &cie, ill, adapt)?;
-        let name = format!("newton_{}.csv", ill.name());
-        write(&name, csv.as_bytes())?;
-        newton_csv.push(name);
+        part.files
+            .push((format!("newton_{}.csv", ill.name()), csv.into_bytes()));
         let rows = colour::newton_sequence(NEWTON_N, &thick, &cie, ill, adapt)?;
         bands.push((
             format!("{} ({})", ill.name(), adapt.name()),
             rows.iter().map(|r| r.srgb8).collect::<Vec<_>>(),
         ));
     }
-    write(
-        "newton_strip.png",
-        &plot::newton_strip_png(&bands, 0.0, NEWTON_MAX_NM as f64)?,
-    )?;
-    timings.push((
+    part.files.push((
+        "newton_strip.png".into(),
+        plot::newton_strip_png(&bands, 0.0, NEWTON_MAX_NM as f64)?,
+    ));
+    part.timings.push((
         "Newton sequence, 1501 thicknesses × 471 wavelengths × 2".into(),
         t.elapsed().as_secs_f64(),
     ));
-
-    // Colour error against the number of spectral samples.
-    let t = Instant::now();
-    let colour_error = colour_error_study(opts)?;
-    timings.push(("colour-error study".into(), t.elapsed().as_secs_f64()));
-    let csv = crate::io::csv_text(
-        &[
-            "samples",
-            "newton_d65_mean_de00",
-            "newton_d65_max_de00",
-            "newton_e_mean_de00",
-            "newton_e_max_de00",
-            "plate_mean_de00",
-            "plate_max_de00",
-            "plate_seconds",
-        ],
-        colour_error.iter().map(|r| {
-            vec![
-                r.samples.to_string(),
-                format!("{:.6e}", r.newton_d65_mean),
-                format!("{:.6e}", r.newton_d65_max),
-                format!("{:.6e}", r.newton_e_mean),
-                format!("{:.6e}", r.newton_e_max),
-                format!("{:.6e}", r.plate_mean),
-                format!("{:.6e}", r.plate_max),
-                format!("{:.4}", r.plate_seconds),
-            ]
-        }),
-    );
-    write("colour_error.csv", csv.as_bytes())?;
-    let series = vec![
-        (
-            "Newton film, D65, mean".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.newton_d65_mean))
-                .collect(),
-        ),
-        (
-            "Newton film, D65, max".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.newton_d65_max))
-                .collect(),
-        ),
-        (
-            "plate scene, D65, mean".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.plate_mean))
-                .collect(),
-        ),
-        (
-            "plate scene, D65, max".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.plate_max))
-                .collect(),
-        ),
-    ];
-    write("colour_error.png", &plot::colour_error_png(&series)?)?;
-    settings.push(format!(
-        "Colour error: CIEDE2000 of each sample count against the 1 nm grid (471 samples, \
-         360–830 nm); Newton film at 301 thicknesses 0–1500 nm; plate scene (paper_rules) at \
-         {0}×{0} points under D65, exposure from the reference picture.",
-        opts.error_size
-    ));
-
-    let manifest = Manifest {
-        settings,
-        figures,
-        fig8,
-        newton_strip: "newton_strip.png".into(),
-        newton_csv,
-        colour_error,
-        colour_error_plot: "colour_error.png".into(),
-        colour_error_csv: "colour_error.csv".into(),
-        timings,
-    };
-    let json = serde_json::to_string_pretty(&manifest).map_err(|e| e.to_string())?;
-    write("figures.json", json.as_bytes())?;
-    Ok(manifest)
+    Ok(part)
 }
 
 /// The Fig. 8 statistics in the paper's words, with the paper's values beside them.
@@ -507,31 +596,38 @@ pub fn colour_error_study(opts: &FigureOptions) -> Result<Vec<ColourErrorRow>, S
         )?;
         Ok((xyz_of(&r.images[0]).to_vec(), r.seconds))
     };
-    let ref_d65 = newton(&reference, Illuminant::D65)?;
-    let ref_e = newton(&reference, Illuminant::E)?;
-    let (ref_plate, _) = plate_xyz(&reference)?;
+    // The reference and every sample count are independent: all are computed side by side
+    // (the renders are small), then compared.
+    let grids: Vec<WavelengthGrid> = std::iter::once(Ok(reference))
+        .chain(ERROR_SAMPLES.iter().map(|&k| visible_grid(k)))
+        .collect::<Result<_, String>>()?;
+    type Computed = (Vec<[f64; 3]>, Vec<[f64; 3]>, Vec<[f64; 3]>, f64);
+    let computed: Vec<Computed> = grids
+        .par_iter()
+        .map(|grid| {
+            let (p, secs) = plate_xyz(grid)?;
+            Ok((
+                newton(grid, Illuminant::D65)?,
+                newton(grid, Illuminant::E)?,
+                p,
+                secs,
+            ))
+        })
+        .collect::<Result<_, String>>()?;
+    let (ref_d65, ref_e, ref_plate, _) = &computed[0];
     let exposure = img::exposure_for_peak_y([ref_plate.as_slice()]);
     let scaled =
         |v: &[[f64; 3]]| -> Vec<[f64; 3]> { v.iter().map(|p| p.map(|c| c * exposure)).collect() };
-    let ref_plate = scaled(&ref_plate);
-    ERROR_SAMPLES
+    let ref_plate = scaled(ref_plate);
+    Ok(ERROR_SAMPLES
         .iter()
-        .map(|&k| {
-            let grid = visible_grid(k)?;
-            let (nd_mean, nd_max) = delta_e_stats(
-                &newton(&grid, Illuminant::D65)?,
-                &ref_d65,
-                Illuminant::D65.white_xyz(),
-            );
-            let (ne_mean, ne_max) = delta_e_stats(
-                &newton(&grid, Illuminant::E)?,
-                &ref_e,
-                Illuminant::E.white_xyz(),
-            );
-            let (p, secs) = plate_xyz(&grid)?;
+        .zip(&computed[1..])
+        .map(|(&k, (d65, e, p, secs))| {
+            let (nd_mean, nd_max) = delta_e_stats(d65, ref_d65, Illuminant::D65.white_xyz());
+            let (ne_mean, ne_max) = delta_e_stats(e, ref_e, Illuminant::E.white_xyz());
             let (p_mean, p_max) =
-                delta_e_stats(&scaled(&p), &ref_plate, Illuminant::D65.white_xyz());
-            Ok(ColourErrorRow {
+                delta_e_stats(&scaled(p), &ref_plate, Illuminant::D65.white_xyz());
+            ColourErrorRow {
                 samples: k,
                 newton_d65_mean: nd_mean,
                 newton_d65_max: nd_max,
@@ -539,8 +635,8 @@ pub fn colour_error_study(opts: &FigureOptions) -> Result<Vec<ColourErrorRow>, S
                 newton_e_max: ne_max,
                 plate_mean: p_mean,
                 plate_max: p_max,
-                plate_seconds: secs,
-            })
+                plate_seconds: *secs,
+            }
         })
-        .collect()
+        .collect())
 }

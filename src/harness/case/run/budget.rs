@@ -138,7 +138,7 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
 /// Work units (see [`preflight`]) a case may use before it is refused: about five minutes of
 /// tracing on the busy 2-core machine of this project, about one when it is idle (see
 /// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
-/// (2.3e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
+/// (about 3.7e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
 /// 110 s measured) too; four (2.8e9) are refused.
 pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
@@ -154,15 +154,36 @@ pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
 pub(super) const CONVERGENCE_ORDERS: [usize; 12] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64];
 
 /// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
-/// models, extents and blockers: about 20 discovery visits, measured with the Airy plate at
-/// m = 2000 against stacked plates).
-const WALKED_NODE_UNITS: f64 = 20.0;
+/// models, extents and blockers), beside its discovery visits: about one more visit. It was
+/// 20 when the walk's cost was taken to be linear in m; calibrated with its per-event part
+/// ([`WALKED_EVENT_UNITS`]) against the library Airy cases and the Airy plate at m = 2000
+/// (`benches/preflight.rs`, README "Limits").
+const WALKED_NODE_UNITS: f64 = 1.0;
+
+/// Work units per event of every traced path under the far-field walk: the walk shares each
+/// path's beginning with the next order's, but the case run still passes over every arrival's
+/// whole path (the phase ledger, the rounding and representation terms of
+/// `harness::conditioning`), so an Airy point with m internal reflections costs a part ∝ m
+/// (the walk) and a part ∝ m² (those passes). Calibrated with `benches/preflight.rs`.
+const WALKED_EVENT_UNITS: f64 = 0.04;
+
+/// The work of one point at its budget, in two parts that scale differently with the budget m.
+#[derive(Clone, Copy, Debug, PartialEq)]
+struct PointWork {
+    /// Units that grow like m + 2 (the far-field walk and its discovery).
+    linear: f64,
+    /// Units that grow like (m + 2)² (every event of every candidate sequence: the solver
+    /// tracing each path, or the case run's passes over the walked paths).
+    quadratic: f64,
+}
 
 /// The work of one probe point at one wavelength, counted on the sequence tree the tracer
 /// itself discovers there (`trace::plan`): every probe ray of discovery visits at most every
 /// node of the tree (one unit each), and the solver then traces every candidate sequence event
 /// by event (one unit per event), or, for a plane wave observed in the far field, every node
-/// of the tree once (the walk of shared beginnings, [`WALKED_NODE_UNITS`] per node). Returns (work, measured): `measured` is false when the tree grew so fast with
+/// of the tree once (the walk of shared beginnings, [`WALKED_NODE_UNITS`] per node) and the
+/// case run passes over every event of every walked path ([`WALKED_EVENT_UNITS`] each).
+/// Returns (work, measured): `measured` is false when the tree grew so fast with
 /// the allowed depth that the work was extrapolated (polynomially from the last doubling of the
 /// depth, which under-counts an exponential growth) instead of enumerated, because it already
 /// exceeds `cap`.
@@ -171,7 +192,7 @@ fn point_work(
     pt: &ProbePoint,
     internal: usize,
     cap: f64,
-) -> Result<(f64, bool), CaseError> {
+) -> Result<(PointWork, bool), CaseError> {
     let spec = &case.spec;
     let built =
         build::build_scene(&spec.scene, &pt.overrides).map_err(|e| case_err(case, "$.scene", e))?;
@@ -181,17 +202,16 @@ fn point_work(
         .scene
         .optics(lambda)
         .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+    let nothing = PointWork {
+        linear: 0.0,
+        quadratic: 0.0,
+    };
     let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
         .map_err(|e| case_err(case, "$.probe", e))?
     else {
-        return Ok((0.0, true)); // no transmitted wave: nothing is traced
+        return Ok((nothing, true)); // no transmitted wave: nothing is traced
     };
-    let walked = !matches!(pt.observer, Observer::Point { .. })
-        && built
-            .scene
-            .sources
-            .iter()
-            .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
+    let walked = walked(&built, pt);
     let probe = probe_targets(&target);
     // trace::plan's probe rays per source: the probe points, each surface's plane point and the
     // specular points of the probe on each plane.
@@ -217,25 +237,49 @@ fn point_work(
                 .map(|n| n.depth as f64)
                 .sum::<f64>();
         }
-        let work = rays * nodes
-            + if walked {
-                WALKED_NODE_UNITS * nodes
-            } else {
-                events
-            };
+        let work = if walked {
+            PointWork {
+                linear: (rays + WALKED_NODE_UNITS) * nodes,
+                quadratic: WALKED_EVENT_UNITS * events,
+            }
+        } else {
+            PointWork {
+                linear: 0.0,
+                quadratic: rays * nodes + events,
+            }
+        };
+        let total = work.linear + work.quadratic;
         if depth == full.max_events {
             return Ok((work, true));
         }
         if let Some(w0) = previous {
-            let p = (work / w0).log2().max(0.0);
-            let predicted = work * (full.max_events as f64 / depth as f64).powf(p);
-            if predicted > cap {
+            let p = (total / w0).log2().max(0.0);
+            let grow = (full.max_events as f64 / depth as f64).powf(p);
+            // Stop early only where the refusal is clear: the work counted so far already
+            // exceeds the cap, or the extrapolation exceeds it 4-fold (from a shallow depth it
+            // can overshoot a polynomial growth by a third: the walked Airy plate at m = 2000,
+            // whose part in m² takes over only with depth; it under-counts an exponential one).
+            if total > cap || total * grow > 4.0 * cap {
+                let predicted = PointWork {
+                    linear: work.linear * grow,
+                    quadratic: work.quadratic * grow,
+                };
                 return Ok((predicted, false));
             }
         }
-        previous = Some(work);
+        previous = Some(total);
         depth = (2 * depth).min(full.max_events);
     }
+}
+
+/// Whether a point is traced by the far-field walk: a far-field observer lit by plane waves only.
+fn walked(built: &Built, pt: &ProbePoint) -> bool {
+    !matches!(pt.observer, Observer::Point { .. })
+        && built
+            .scene
+            .sources
+            .iter()
+            .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }))
 }
 
 /// The tracing work of a case, checked before anything runs, in work units (one unit: a probe
@@ -247,11 +291,36 @@ fn point_work(
 /// the ambient medium are not internal reflections, and stacked plates multiply the sequences
 /// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
-/// ((m + 2) for the walk of a plane wave in the far field, (m + 2)² otherwise), times its
+/// (the walk of a plane wave in the far field: its part ∝ (m + 2) and its per-event part
+/// ∝ (m + 2)²; otherwise (m + 2)²), times its
 /// spectral samples; the bounce-convergence report of monochrome Airy cases adds its ladder of
 /// budgets (`CONVERGENCE_ORDERS`) at up to 24 of the points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
 /// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
+    work_estimate(case).map(|e| e.units())
+}
+
+/// A case's work estimate in its two parts (work units, every point and wavelength weighted):
+/// what grows like the internal-reflection budget and what grows like its square
+/// ([`preflight`] is their sum; `benches/preflight.rs` calibrates the constants with them).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct WorkEstimate {
+    /// The far-field walk and its discovery (∝ m + 2 per point).
+    pub linear_units: f64,
+    /// Every event of every candidate sequence (∝ (m + 2)² per point), and everything of a
+    /// point that is not walked.
+    pub quadratic_units: f64,
+}
+
+impl WorkEstimate {
+    /// The whole estimate, work units.
+    pub fn units(&self) -> f64 {
+        self.linear_units + self.quadratic_units
+    }
+}
+
+/// [`preflight`] with its two parts; refuses the same cases with the same message.
+pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
     let spec = &case.spec;
     let points = build::probe_points(&spec.probe);
     let mut budgets = Vec::with_capacity(points.len());
@@ -260,13 +329,7 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
             .map_err(|e| case_err(case, "$.scene", e))?;
         let spectrum = build::spectrum(&spec.light, &pt.overrides);
         let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
-        let walked = !matches!(pt.observer, Observer::Point { .. })
-            && built
-                .scene
-                .sources
-                .iter()
-                .all(|s| matches!(s.emitter, Emitter::PlaneWave { .. }));
-        budgets.push((internal, walked, spectrum.len() as f64));
+        budgets.push((internal, walked(&built, pt), spectrum.len() as f64));
     }
     // The representative point: the largest budget, the centre among equals.
     let centre = points.len() / 2;
@@ -276,12 +339,16 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     } else {
         budgets.iter().position(|b| b.0 == worst).unwrap_or(centre)
     };
-    // Each point relative to the representative one.
+    // Each point relative to the representative one: the weights of its linear and its
+    // quadratic part.
     let scale = |&(m, walked, samples): &(usize, bool, f64)| {
         let r = (m as f64 + 2.0) / (worst as f64 + 2.0);
-        samples * if walked { r } else { r * r }
+        (samples * if walked { r } else { r * r }, samples * r * r)
     };
-    let mut weight: f64 = budgets.iter().map(scale).sum();
+    let (mut linear_weight, mut quadratic_weight) = budgets
+        .iter()
+        .map(scale)
+        .fold((0.0, 0.0), |(a, b), (x, y)| (a + x, b + y));
     let convergence_report = matches!(spec.light, Light::Monochrome { .. })
         && spec.references.iter().any(|r| {
             matches!(
@@ -305,11 +372,20 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
             if internal > worst.max(1) {
                 break;
             }
-            weight += sampled * scale(&(internal, walked, 1.0));
+            let (l, q) = scale(&(internal, walked, 1.0));
+            linear_weight += sampled * l;
+            quadratic_weight += sampled * q;
         }
     }
-    let (per_point, measured) = point_work(case, &points[rep], worst, MAX_PATH_EVENTS / weight)?;
-    let work = per_point * weight;
+    // Enumeration stops early only where the part it has counted already exceeds the cap at
+    // the smaller weight, so the case is refused whatever the split.
+    let least = linear_weight.min(quadratic_weight);
+    let (per_point, measured) = point_work(case, &points[rep], worst, MAX_PATH_EVENTS / least)?;
+    let estimate = WorkEstimate {
+        linear_units: per_point.linear * linear_weight,
+        quadratic_units: per_point.quadratic * quadratic_weight,
+    };
+    let work = estimate.units();
     if work > MAX_PATH_EVENTS {
         let key = if spec.trace.airy_tail_epsilon.is_some() {
             "$.trace.airy_tail_epsilon"
@@ -322,7 +398,7 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
             format!(
                 "this case would take {} {work:.2e} work units (≈ {:.0} s on the 2-core \
                  machine of this project), more than the work cap of {MAX_PATH_EVENTS:.0e}: \
-                 {} surface(s) with up to {worst} internal reflections give {per_point:.2e} \
+                 {} surface(s) with up to {worst} internal reflections give {:.2e} \
                  units per probe point and wavelength (sequence discovery and solving; \
                  reflections between separate surfaces in the ambient medium multiply the \
                  sequences), times {} probe point(s) and their spectral samples: use fewer \
@@ -330,9 +406,10 @@ pub fn preflight(case: &Case) -> Result<f64, CaseError> {
                 if measured { "about" } else { "at least" },
                 work * SECONDS_PER_WORK_UNIT,
                 spec.scene.surfaces.len(),
+                per_point.linear + per_point.quadratic,
                 points.len()
             ),
         ));
     }
-    Ok(work)
+    Ok(estimate)
 }

@@ -26,7 +26,10 @@ mod wiring;
 pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
-pub use budget::{CLOSED_TAIL_ORDERS, MAX_PATH_EVENTS, SECONDS_PER_WORK_UNIT, preflight};
+pub use budget::{
+    CLOSED_TAIL_ORDERS, MAX_PATH_EVENTS, SECONDS_PER_WORK_UNIT, WorkEstimate, preflight,
+    work_estimate,
+};
 use convergence::*;
 use metrics::*;
 use wiring::*;
@@ -270,6 +273,9 @@ pub(super) struct Sample {
     /// The factor from |E|² to the probe's observable ([`reference::observable_factor`]).
     pub factor: f64,
     pub arrivals: Vec<Arrival>,
+    /// The scene's optics at `lambda_m` (built once per sample, for the tracer and the
+    /// conditioning terms alike).
+    pub optics: crate::scene::SceneOptics,
 }
 
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
@@ -307,6 +313,7 @@ pub(super) fn trace_point(
                 target: None,
                 factor: 0.0,
                 arrivals: Vec::new(),
+                optics,
             };
             visit(&built, &spectrum, sample)?;
             continue;
@@ -364,7 +371,7 @@ pub(super) fn trace_point(
                         )
                     })?;
                 }
-                last = Some((optics, target, arr.clone()));
+                last = Some((optics.clone(), target, arr.clone()));
                 arr
             }
         };
@@ -378,6 +385,7 @@ pub(super) fn trace_point(
             target: Some(target),
             factor,
             arrivals,
+            optics,
         };
         visit(&built, &spectrum, sample)?;
     }
@@ -412,6 +420,8 @@ fn run_point(
     let mut center = 0.0;
     let mut acc = Accumulator::new();
     let mut contributions = Vec::new();
+    // The `vector` contributions of the sample, for the conditioning terms.
+    let mut vector = Vec::new();
     let mut cycles = Vec::new();
     let (built, internal) = trace_point(case, pt, |built, spectrum, sample| {
         let Sample {
@@ -421,6 +431,7 @@ fn run_point(
             target,
             factor,
             arrivals: mut arr,
+            optics,
         } = sample;
         // `trace::intensity` of each level, with the accumulator and contributions reused
         // (the same sums: a cleared accumulator is a new one).
@@ -448,8 +459,18 @@ fn run_point(
             let i = acc.intensity();
             if *l == Fidelity::Vector {
                 vector_intensity = Some(i);
+                // Kept for the conditioning terms below (the same contributions).
+                std::mem::swap(&mut vector, &mut contributions);
             }
             *out.intensity.get_mut(l).unwrap() += w * factor * i;
+        }
+        if vector_intensity.is_none() {
+            vector.clear();
+            vector.extend(
+                arr.iter()
+                    .zip(&cycles)
+                    .map(|(a, c)| trace::contribution_with(a, Fidelity::Vector, c)),
+            );
         }
         // A sum cut where the Airy tail bound falls below `airy_tail_epsilon` (not closed) is
         // off the full sum by what the case asked to leave out (budget::tail_truncation).
@@ -461,12 +482,13 @@ fn run_point(
             let sources = built.scene.sources.iter().map(|s| s.intensity.sqrt()).sum();
             out.rounding += w * budget::tail_truncation(factor * i, eps, sources);
         }
-        if let (Some(r), Ok(optics)) = (reference, built.scene.optics(lambda)) {
+        if let Some(r) = reference {
             out.rounding += w
                 * factor
                 * crate::harness::conditioning::intensity_rounding(
                     &arr,
                     r,
+                    &vector,
                     lambda,
                     &built.scene,
                     &optics,
@@ -478,12 +500,12 @@ fn run_point(
                 * factor
                 * (crate::harness::conditioning::direction_sensitivity(
                     &arr,
-                    r,
+                    &vector,
                     lambda,
                     &built.scene,
                 ) + crate::harness::conditioning::amplitude_sensitivity(
                     &arr,
-                    r,
+                    &vector,
                     &built.scene,
                     &optics,
                 ) + vector_intensity.unwrap_or(0.0)
