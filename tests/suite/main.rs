@@ -47,6 +47,7 @@ mod truth_airy_tracer;
 mod truth_beyond_critical_plates;
 mod truth_geometry;
 mod truth_grazing;
+mod truth_grazing_plane_waves;
 mod truth_plates;
 mod truth_point_sources;
 mod truth_refusals;
