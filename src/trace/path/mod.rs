@@ -473,21 +473,58 @@ pub fn plane_wave_launch(
                 _ => Some((t, s)),
             },
         );
-    // Every plane must lie ahead (the reference before the whole stack), the first by > 1 mm.
-    const STANDOFF_M: f64 = 1e-3;
+    // Every plane must lie ahead (the reference before the whole stack), the first by more
+    // than the standoff.
     let all_ahead = scene.surfaces.iter().all(|s| {
         s.plane
             .intersect(reference, direction)
             .is_some_and(|t| t > 0.0)
     });
     match nearest {
-        Some((t, surf)) if all_ahead && t > STANDOFF_M => {
-            let launch = surf.plane.point - STANDOFF_M * direction;
-            (launch, projection(direction, launch, reference))
+        Some((t, surf)) => {
+            let standoff = launch_standoff(surf.plane.point, direction.dot(nu).abs());
+            if all_ahead && t > standoff {
+                let launch = surf.plane.point - standoff * direction;
+                (launch, projection(direction, launch, reference))
+            } else {
+                from_reference
+            }
         }
         _ => from_reference,
     }
 }
+
+/// The least distance (m) along a plane wave's direction from its stack launch to the point
+/// `point` of the first plane: [`STANDOFF_M`], or more where that leaves the launch too close to
+/// the plane to be told from it. The launch's height above the plane is the standoff times
+/// `cos_theta` = |d·N|, and its f64 coordinates are rounded by ~u of the plane point's largest
+/// coordinate X: at 89.999999999999° (cos θ = 1.7e-14) 1 mm is 1.7e-17 m above the plane, below
+/// one rounding of X = 3 m (4e-16 m), and the launch fell on the plane or behind it — the wave
+/// met no face and no light reached the probe (`fringe fuzz --family airy --seed 1`, scenes
+/// 8206 and 9450; `plane_wave_beams` scene 1294). The height is therefore at least
+/// [`LAUNCH_HEIGHT_ULPS`] roundings of the coordinates the launch is formed from (X and the
+/// standoff itself): s·cos θ ≥ K u (X + s), s = K u X/(cos θ − K u), where cos θ > 2 K u; for a
+/// wave more grazing still the standoff stays 1 mm (no launch off that plane resolves it: the
+/// reference is used if it is nearer). The hit point's rounding grows with the standoff, u s
+/// along the plane (second order, Fermat) and across it (moved back onto the plane and its
+/// first-order path added, [`crate::scene::geometry::Plane::off_plane_path_correction`]).
+fn launch_standoff(point: DVec3, cos_theta: f64) -> f64 {
+    let ku = LAUNCH_HEIGHT_ULPS * f64::EPSILON / 2.0;
+    let x = point.abs().max_element();
+    if cos_theta > 2.0 * ku {
+        STANDOFF_M.max(ku * x / (cos_theta - ku))
+    } else {
+        STANDOFF_M
+    }
+}
+
+/// The distance (m) along a plane wave's direction from its stack launch to the first plane
+/// where that is resolved ([`launch_standoff`]).
+const STANDOFF_M: f64 = 1e-3;
+
+/// Roundings of its coordinates by which a stack launch must lie above the first plane
+/// ([`launch_standoff`]).
+const LAUNCH_HEIGHT_ULPS: f64 = 16.0;
 
 /// Find the exact path from `emitter` through `seq` to `target`.
 pub fn solve(
