@@ -574,7 +574,8 @@ pub fn solve(
         let d = direction.normalize();
         let (launch, ahead) = plane_wave_launch(scene, d, reference_point);
         trace_planes(scene, optics, launch, d, seq, &mut g)?;
-        let err = far_field_landing(*g.dirs.last().unwrap(), dir)?;
+        let exit_normal = seq.last().map(|e| scene.surfaces[e.surface].plane.normal);
+        let err = far_field_landing(*g.dirs.last().unwrap(), dir, exit_normal)?;
         let start = ahead.mul_f64(optics.ambient_index);
         return finish(scene, g, seq, &target, (err, 0, 1.0), start);
     }
