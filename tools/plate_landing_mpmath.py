@@ -28,7 +28,7 @@ import os
 import sys
 
 import mpmath as mp
-from two_beam_plate_near_critical_mpmath import intensity
+from two_beam_plate_near_critical_mpmath import geometry as case_geometry, intensity
 
 mp.mp.dps = 50
 M = mp.mpf
@@ -62,33 +62,10 @@ def through(n1, n2, d, hs, ho, x):
 
 
 def geometry(name):
-    c = json.load(open(os.path.join(HERE, name + ".json")))
-    sc = c["scene"]
-    media = sc["media"]
-    plate = [s["plate"] for s in sc["surfaces"] if "plate" in s][0]
-    assert plate["above"] == plate["below"] == sc["ambient"]
-    n1 = M(media[sc["ambient"]]["constant"]["n"])
-    n2 = M(media[plate["medium"]]["constant"]["n"])
-    assert n2 < n1
-    nn = [M(v) for v in plate["normal"]]
-    norm = mp.sqrt(sum(v * v for v in nn))
-    nn = [v / norm for v in nn]
-    dot = lambda a, b: sum(u * v for u, v in zip(a, b))
-    top = [M(v) for v in plate["top_point_m"]]
-    src = [M(v) - t for v, t in zip(sc["sources"][0]["emitter"]["point"]["position_m"], top)]
-    line = c["probe"]["line"]
-    assert line["count"] == 2
-    lam = M(c["light"]["monochrome"]["wavelength_nm"] * 1e-9)
-    d = M(plate["thickness_um"] * 1e-6)
-    basis_free = "model" not in sc["sources"][0]["polarization"]["unpolarized"]
-    out = []
-    for p in (line["from_m"], line["to_m"]):
-        p = [M(v) - t for v, t in zip(p, top)]
-        v = [a - b for a, b in zip(p, src)]
-        along = dot(v, nn)
-        lateral = mp.sqrt(dot(v, v) - along * along)
-        out.append((n1, n2, d, dot(src, nn), dot(p, nn), lateral, lam, basis_free))
-    return out
+    """The two end points' geometry of found case `name`, a plate rarer than its ambient."""
+    points = case_geometry(json.load(open(os.path.join(HERE, name + ".json"))))
+    assert all(n2 < n1 for (n1, n2, *_) in points)
+    return points
 
 
 if __name__ == "__main__":

@@ -80,8 +80,9 @@ def intensity(n1, n2, d, hs, ho, x, lam, basis_free):
     return i_c + b * (c * c - c)
 
 
-def scene(path):
-    c = json.load(open(path))
+def geometry(c):
+    """The intensity() arguments (n1, n2, d, hs, ho, x, lam, basis_free) at the two end points
+    of a two_beam_plate case c (parsed JSON), its binary64 numbers taken exactly."""
     sc = c["scene"]
     media = sc["media"]
     plate = [s["plate"] for s in sc["surfaces"] if "plate" in s][0]
@@ -105,8 +106,13 @@ def scene(path):
         v = [a - b for a, b in zip(p, src)]
         along = dot(v, nn)
         lateral = mp.sqrt(dot(v, v) - along * along)
-        out.append(intensity(n1, n2, d, dot(src, nn), dot(p, nn), lateral, lam, basis_free))
-    return c["name"], out
+        out.append((n1, n2, d, dot(src, nn), dot(p, nn), lateral, lam, basis_free))
+    return out
+
+
+def scene(path):
+    c = json.load(open(path))
+    return c["name"], [intensity(*g) for g in geometry(c)]
 
 
 if __name__ == "__main__":
