@@ -28,7 +28,7 @@ import os
 import sys
 
 import mpmath as mp
-from two_beam_plate_near_critical_mpmath import geometry as case_geometry, intensity
+from two_beam_plate_near_critical_mpmath import geometry as case_geometry, intensity, tan_theta_t
 
 mp.mp.dps = 50
 M = mp.mpf
@@ -38,21 +38,8 @@ HERE = os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests", "
 
 
 def through(n1, n2, d, hs, ho, x):
-    """(w = tan t, optical path) of the beam through the plate (n2 < n1), bisection in w."""
-    def miss(w):
-        s1 = n2 / n1 * w / mp.sqrt(1 + w * w)
-        return (hs + ho) * s1 / mp.sqrt(1 - s1 * s1) + 2 * d * w - x
-
-    lo, hi = M(0), M(1)
-    while miss(hi) < 0:
-        hi *= 2
-    for _ in range(400):
-        mid = (lo + hi) / 2
-        if miss(mid) < 0:
-            lo = mid
-        else:
-            hi = mid
-    w = (lo + hi) / 2
+    """(w = tan t, optical path) of the beam through the plate (n2 < n1)."""
+    w = tan_theta_t(n1, n2, d, hs, ho, x)
     s1 = n2 / n1 * w / mp.sqrt(1 + w * w)
     t1 = s1 / mp.sqrt(1 - s1 * s1)
     a, b = hs * t1, ho * t1

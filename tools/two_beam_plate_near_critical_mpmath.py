@@ -32,7 +32,8 @@ M = mp.mpf
 FOUND = [1320, 4441, 4659, 5397, 6372, 7438, 8745, 9342]
 
 
-def intensity(n1, n2, d, hs, ho, x, lam, basis_free):
+def tan_theta_t(n1, n2, d, hs, ho, x):
+    """w = tan t inside the plate of the beam through it (n2 < n1), by bisection in w."""
     def miss(w):
         st = w / mp.sqrt(1 + w * w)
         s1 = n2 / n1 * st
@@ -47,7 +48,11 @@ def intensity(n1, n2, d, hs, ho, x, lam, basis_free):
             lo = mid
         else:
             hi = mid
-    w = (lo + hi) / 2
+    return (lo + hi) / 2
+
+
+def intensity(n1, n2, d, hs, ho, x, lam, basis_free):
+    w = tan_theta_t(n1, n2, d, hs, ho, x)
     s1 = n2 / n1 * w / mp.sqrt(1 + w * w)
     a = hs * s1 / mp.sqrt(1 - s1 * s1)
     # The top beam: beyond the critical angle the layer's frustrated reflection.
