@@ -292,35 +292,17 @@ pub fn compute(opts: &FigureOptions) -> Result<FigureSet, String> {
         }),
     );
     files.push(("colour_error.csv".into(), csv.into_bytes()));
+    let curve = |label: &str, value: fn(&ColourErrorRow) -> f64| {
+        (
+            label.to_string(),
+            colour_error.iter().map(|r| (r.samples, value(r))).collect(),
+        )
+    };
     let series = vec![
-        (
-            "Newton film, D65, mean".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.newton_d65_mean))
-                .collect(),
-        ),
-        (
-            "Newton film, D65, max".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.newton_d65_max))
-                .collect(),
-        ),
-        (
-            "plate scene, D65, mean".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.plate_mean))
-                .collect(),
-        ),
-        (
-            "plate scene, D65, max".to_string(),
-            colour_error
-                .iter()
-                .map(|r| (r.samples, r.plate_max))
-                .collect(),
-        ),
+        curve("Newton film, D65, mean", |r| r.newton_d65_mean),
+        curve("Newton film, D65, max", |r| r.newton_d65_max),
+        curve("plate scene, D65, mean", |r| r.plate_mean),
+        curve("plate scene, D65, max", |r| r.plate_max),
     ];
     files.push(("colour_error.png".into(), plot::colour_error_png(&series)?));
     settings.push(format!(
