@@ -22,7 +22,6 @@
 //!   directions are now normalized. The closed form was right to 1e-16.
 
 use crate::support;
-use fringe::harness::case::{load, run};
 use fringe::harness::fuzz::{self, Verdict};
 use std::path::PathBuf;
 
@@ -30,22 +29,6 @@ const CSV: &str = "found_edges_mpmath.csv";
 
 fn file(name: &str) -> PathBuf {
     PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/fuzz_found/{name}.json"))
-}
-
-/// Largest deviation of the closed form's values for the case file `name` from the 50-digit
-/// values `truth`, relative to the largest of them (as the gate measures).
-fn closed_form_error(name: &str, truth: &[f64]) -> f64 {
-    let path = file(name);
-    let text = std::fs::read_to_string(&path).unwrap();
-    let r = run::run_with(&load::parse(&path, &text).expect("a valid case"), false).unwrap();
-    let analytic = &r.metrics[0].analytic;
-    assert_eq!(analytic.len(), truth.len(), "{name}: probe points");
-    let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-    analytic
-        .iter()
-        .zip(truth)
-        .map(|(a, m)| (a - m).abs() / scale)
-        .fold(0.0, f64::max)
 }
 
 /// (scene, tolerance of the traced value against 50 digits, relative). Before the fixes the
@@ -81,7 +64,7 @@ fn the_closed_forms_equal_50_digits() {
     let truth = support::mpmath_profiles(CSV);
     let mut bad = Vec::new();
     for (name, values) in &truth {
-        let err = closed_form_error(name, values);
+        let err = support::closed_form_error(name, values);
         println!("{name}: closed form vs 50 digits {err:e}");
         if err.is_nan() || err > 1e-14 {
             bad.push(format!("{name}: {err:e}"));

@@ -78,15 +78,32 @@ pub fn two_beam_plate_rows(
 /// `tests/fuzz_found/{name}.json` from the 50-digit values `truth`, relative to the largest
 /// 50-digit value of the profile (as the gate measures).
 pub fn traced_error(name: &str, truth: &[f64]) -> f64 {
+    profile_error(name, truth, |m| {
+        &m.traced[&fringe::accumulate::fidelity::Fidelity::Vector]
+    })
+}
+
+/// The same for the closed form's values of the case's first reference.
+pub fn closed_form_error(name: &str, truth: &[f64]) -> f64 {
+    profile_error(name, truth, |m| &m.analytic)
+}
+
+/// Largest deviation of `values` of the first reference's metric of the case file
+/// `tests/fuzz_found/{name}.json` from `truth`, relative to the largest of `truth`.
+fn profile_error(
+    name: &str,
+    truth: &[f64],
+    values: fn(&fringe::harness::case::run::MetricResult) -> &Vec<f64>,
+) -> f64 {
     use fringe::harness::case::{load, run};
     let path =
         PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/fuzz_found/{name}.json"));
     let text = std::fs::read_to_string(&path).unwrap();
     let r = run::run_with(&load::parse(&path, &text).expect("a valid case"), false).unwrap();
-    let traced = &r.metrics[0].traced[&fringe::accumulate::fidelity::Fidelity::Vector];
-    assert_eq!(traced.len(), truth.len(), "{name}: probe points");
+    let values = values(&r.metrics[0]);
+    assert_eq!(values.len(), truth.len(), "{name}: probe points");
     let scale = truth.iter().fold(0.0f64, |s, x| s.max(x.abs()));
-    traced
+    values
         .iter()
         .zip(truth)
         .map(|(t, m)| (t - m).abs() / scale)
