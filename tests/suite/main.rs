@@ -48,6 +48,7 @@ mod truth_beyond_critical_plates;
 mod truth_found_edges;
 mod truth_geometry;
 mod truth_grazing;
+mod truth_grazing_brewster;
 mod truth_grazing_plane_waves;
 mod truth_plate_landing;
 mod truth_plates;
