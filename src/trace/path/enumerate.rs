@@ -2,7 +2,6 @@
 //! limits of a case (internal reflections, sequence count).
 
 use super::*;
-use crate::optics::double_double::two_prod;
 
 /// Limits of sequence enumeration.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -35,6 +34,8 @@ pub fn discover_sequences(
     limits: &EnumerationLimits,
 ) -> SequenceTree {
     let mut found = TreeBuilder::new();
+    // A plane wave on a film stack starts every probe at the same launch: explored once.
+    let mut launched = false;
     for &p in probe_targets {
         let (o, d) = match emitter {
             Emitter::Point { position } => (position, (p - position).normalize()),
@@ -47,8 +48,19 @@ pub fn discover_sequences(
                 direction,
                 reference_point,
             } => {
+                // Where the tracer starts the wave's rays ([`plane_wave_launch`]) when the scene
+                // is a film stack: a start on the probe's line 100 m out, its coordinates
+                // rounded at ~1e-14 m, is not the wave the solver traces, and near grazing it
+                // fell on the first plane or behind it.
                 let d = direction.normalize();
-                (p - (p - reference_point).dot(d) * d, d)
+                match stack_launch(scene, d, reference_point) {
+                    Some(_) if launched => continue,
+                    Some((launch, _)) => {
+                        launched = true;
+                        (launch, d)
+                    }
+                    None => (p - (p - reference_point).dot(d) * d, d),
+                }
             }
         };
         if !d.is_finite() {
@@ -83,7 +95,7 @@ struct Probe {
     d: DVec3,
     n: f64,
     from: Option<usize>,
-    carried: Option<(DVec3, DoubleDouble)>,
+    carried: Option<(DVec3, interaction::SnellInvariant)>,
     internal: usize,
     parent: Option<(usize, Event)>,
     depth: usize,
@@ -161,7 +173,8 @@ fn explore_one(
     // total reflection where the ray refracts out, and every order through a film at
     // grazing incidence was missing from the plan (issue #12: the Airy tail could not be
     // closed, `fringe fuzz --family airy --seed 1`, scenes 6, 69, 135, 163, 217).
-    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), p.carried);
+    let invariant = interaction::snell_invariant(d, normal, n1, p.carried);
+    let q2_t = invariant.q2_in(n2);
     let is_internal = n != optics.ambient_index;
     let event = |kind| Some((node, Event { surface: j, kind }));
     if !is_internal || p.internal < limits.max_internal_reflections {
@@ -170,7 +183,7 @@ fn explore_one(
             d: fresnel::reflect(d, normal),
             n,
             from: Some(j),
-            carried: Some((normal, q2_i)),
+            carried: Some((normal, invariant)),
             internal: p.internal + usize::from(is_internal),
             parent: event(EventKind::Reflect),
             depth: p.depth + 1,
@@ -186,7 +199,15 @@ fn explore_one(
     };
     // Beyond the critical angle with a layer behind the face: the tunnelled wave.
     if q2_t.hi < 0.0
-        && let Some(c) = tunnelled(scene, optics, (x, d, j), (n1, n2), (q2_i, q2_t), p, node)
+        && let Some(c) = tunnelled(
+            scene,
+            optics,
+            (x, d, j),
+            (n1, n2),
+            (invariant, q2_t),
+            p,
+            node,
+        )
     {
         children.push(c);
     }
@@ -196,7 +217,7 @@ fn explore_one(
             d: d_t,
             n: n2,
             from: Some(j),
-            carried: Some((normal, q2_t)),
+            carried: Some((normal, invariant)),
             internal: p.internal,
             parent: event(EventKind::Refract),
             depth: p.depth + 1,
@@ -214,7 +235,7 @@ fn tunnelled(
     optics: &SceneOptics,
     (x, d, j): (DVec3, DVec3, usize),
     (n1, n2): (f64, f64),
-    (q2_i, q2_t): (DoubleDouble, DoubleDouble),
+    (invariant, q2_t): (interaction::SnellInvariant, DoubleDouble),
     p: &Probe,
     node: usize,
 ) -> Option<Probe> {
@@ -227,7 +248,7 @@ fn tunnelled(
         return None;
     }
     let n3 = l.n_beyond;
-    let q2_3 = q2_i + two_prod(n3, n3) - two_prod(n1, n1);
+    let q2_3 = invariant.q2_in(n3);
     if q2_3.hi <= 0.0 {
         return None;
     }
@@ -238,7 +259,7 @@ fn tunnelled(
         d: d_3,
         n: n3,
         from: Some(partner),
-        carried: Some((normal, q2_3)),
+        carried: Some((normal, invariant)),
         internal: p.internal,
         parent: Some((
             node,
