@@ -16,7 +16,10 @@ Two tables, both `case,point,value` (one row per probe point):
   cos^2 in the p cross term);
 - tests/data/plate_landing_paths_mpmath.csv: the beam through the plate itself, cases
   `<name>/run` (its lateral run inside the plate, 2 d tan t, m), `<name>/path` (its optical
-  path n1 L1 + 2 n2 d / cos t + n1 L3, m) and `<name>/cos_t` (cos t inside the plate).
+  path n1 L1 + 2 n2 d / cos t + n1 L3, m), `<name>/cos_t` (cos t inside the plate) and
+  `<name>/amp_s`, `<name>/amp_p`: the magnitude of its Fresnel product t12 r21 t21 per
+  polarization (in at the top face, reflected at the bottom face from inside, out at the top
+  face; docs/PHYSICS.md §1), which is ∝ cos t near grazing inside.
 Inputs are the case files' own binary64 numbers (heights and lateral distance along the
 plate's normal normalized at 50 digits; thickness_um * 1e-6, wavelength_nm * 1e-9 in binary64).
 Run (from the repository root):
@@ -68,12 +71,20 @@ if __name__ == "__main__":
             for k, g in enumerate(points):
                 print(f"{name},{k},{mp.nstr(i0 * intensity(*g), 30)}")
             continue
-        rows = {"run": [], "path": [], "cos_t": []}
+        rows = {"run": [], "path": [], "cos_t": [], "amp_s": [], "amp_p": []}
         for (n1, n2, d, hs, ho, x, _, _) in points:
             w, op = through(n1, n2, d, hs, ho, x)
             rows["run"].append(2 * d * w)
             rows["path"].append(op)
-            rows["cos_t"].append(1 / mp.sqrt(1 + w * w))
+            c2 = 1 / mp.sqrt(1 + w * w)
+            s1 = n2 / n1 * w * c2
+            c1 = mp.sqrt((1 - s1) * (1 + s1))
+            rows["cos_t"].append(c2)
+            # |t12 t21| |r21| per polarization, the plate (n2) between ambients n1.
+            a, b = n1 * c1, n2 * c2
+            rows["amp_s"].append(4 * a * b / (a + b) ** 2 * abs((b - a) / (b + a)))
+            a, b = n2 * c1, n1 * c2
+            rows["amp_p"].append(4 * a * b / (a + b) ** 2 * abs((b - a) / (b + a)))
         for key, values in rows.items():
             for k, v in enumerate(values):
                 print(f"{name}/{key},{k},{mp.nstr(v, 30)}")

@@ -162,10 +162,11 @@ struct Encounter {
     n2: f64,
     cos_theta_i: f64,
     coefficients: FresnelCoefficients,
-    /// (n1 cos θi)² and (n2 cos θt)² (negative under TIR) in double-double: what the
-    /// children carry to the next parallel face ([`Ray::normal_q2`]).
-    q2_i: DoubleDouble,
+    /// (n2 cos θt)² (negative under TIR) in double-double, from `invariant`.
     q2_t: DoubleDouble,
+    /// Snell's invariant at the face: what every child carries to the next parallel face
+    /// ([`Ray::normal_q2`]).
+    invariant: SnellInvariant,
     /// The tunnelled wave's coefficients, if the face is lit beyond its critical angle with a
     /// layer behind it and a wave can leave the far face ([`Child::Tunnelled`]).
     tunnel: Option<Tunnelling>,
@@ -180,31 +181,90 @@ struct Tunnelling {
     q2_3: DoubleDouble,
 }
 
+/// Snell's invariant p² = (n sin θ)² about a face's normal, held as the squared normal
+/// wavevector q²_ref = (n_ref cos θ_ref)² (double-double) in the medium of index `n_ref` where it
+/// was formed (docs/PHYSICS.md §8). In any index n the normal wavevector square is then
+/// (n cos θ)² = (n² − n_ref²) + q²_ref, with n² − n_ref² from exact products, and exactly
+/// q²_ref in n_ref itself. Carried between parallel faces ([`Ray::normal_q2`]) it is never
+/// re-formed in the next medium and chained back: q²_film = q²_amb + n_f² − n_a² rounds at
+/// ~1e-32 n_f², so a wave grazing in the ambient ((n0 cos θ0)² ~ 1e-32) lost its cosine inside a
+/// denser film and came out of it at another angle (issue #12: Airy tails that could not be
+/// closed, `tests/suite/truth_carried_invariant.rs`). `n_ref = 0` holds p² itself
+/// (q²_ref = −p²).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct SnellInvariant {
+    /// The reference index n_ref (0: `q2_ref` is −p²).
+    pub n_ref: f64,
+    /// (n_ref cos θ_ref)², double-double.
+    pub q2_ref: DoubleDouble,
+}
+
+impl SnellInvariant {
+    /// The invariant as (n cos θ)² = `q2` in index `n`.
+    pub fn in_medium(n: f64, q2: DoubleDouble) -> Self {
+        SnellInvariant {
+            n_ref: n,
+            q2_ref: q2,
+        }
+    }
+
+    /// p² itself (`n_ref` = 0).
+    pub fn from_p2(p2: DoubleDouble) -> Self {
+        SnellInvariant {
+            n_ref: 0.0,
+            q2_ref: -p2,
+        }
+    }
+
+    /// (n cos θ)² in index `n` (double-double; negative beyond the critical angle).
+    #[inline]
+    pub fn q2_in(self, n: f64) -> DoubleDouble {
+        if n == self.n_ref {
+            self.q2_ref
+        } else {
+            two_prod(n, n) - two_prod(self.n_ref, self.n_ref) + self.q2_ref
+        }
+    }
+}
+
+/// Snell's invariant of a ray of direction `d_i` in index `n1` at a face of unit normal
+/// `normal`: `carried` (the ray's [`Ray::normal_q2`]) when `normal` is the same line (bitwise
+/// ±), since Snell's law conserves the tangential wavevector between parallel faces
+/// (docs/PHYSICS.md §8); otherwise (n1 cos θi)² in n1 from cos²θi = (d_i·N)²/(|d_i|²|N|²) of the
+/// f64 vectors in double-double: the direction as given, whichever of cos θi and sin θi is the
+/// small one.
+#[inline]
+pub fn snell_invariant(
+    d_i: DVec3,
+    normal: DVec3,
+    n1: f64,
+    carried: Option<(DVec3, SnellInvariant)>,
+) -> SnellInvariant {
+    match carried {
+        Some((m, inv)) if m == normal || m == -normal => inv,
+        _ => {
+            let c = DoubleDouble::dot(d_i, normal);
+            let cos2 = (c * c) / (DoubleDouble::dot(d_i, d_i) * DoubleDouble::dot(normal, normal));
+            SnellInvariant::in_medium(n1, cos2 * two_prod(n1, n1))
+        }
+    }
+}
+
 /// The squared normal wavevector components (n1 cos θi)² and (n2 cos θt)² (the second
 /// negative under total internal reflection) of a ray of direction `d_i` in index `n1` meeting
-/// a face of unit normal `normal` into index `n2`, in double-double.
+/// a face of unit normal `normal` into index `n2`, in double-double, each formed directly from
+/// the ray's Snell invariant ([`snell_invariant`]), never one from the other.
 ///
-/// `carried` is the ray's [`Ray::normal_q2`]: used when `normal` is the same line (bitwise ±),
-/// since Snell's law conserves the tangential wavevector and (n2 cos θt)² = (n1 cos θi)² +
-/// n2² − n1² is then exact (docs/PHYSICS.md §8). Otherwise cos²θi = (d_i·N)²/(|d_i|²|N|²) of
-/// the f64 vectors in double-double: the direction as given, whichever of cos θi and sin θi is
-/// the small one. The tracer ([`interact`]) and the path solver (`path::step_planes`) both
-/// call this, so they agree on every total internal reflection.
+/// The tracer ([`interact`]) and the path solver (`path::step_planes`) both call this, so they
+/// agree on every total internal reflection.
 pub fn normal_wavevector_squares(
     d_i: DVec3,
     normal: DVec3,
     (n1, n2): (f64, f64),
-    carried: Option<(DVec3, DoubleDouble)>,
+    carried: Option<(DVec3, SnellInvariant)>,
 ) -> (DoubleDouble, DoubleDouble) {
-    let q2_i = match carried {
-        Some((m, q2)) if m == normal || m == -normal => q2,
-        _ => {
-            let c = DoubleDouble::dot(d_i, normal);
-            let cos2 = (c * c) / (DoubleDouble::dot(d_i, d_i) * DoubleDouble::dot(normal, normal));
-            cos2 * two_prod(n1, n1)
-        }
-    };
-    (q2_i, q2_i + two_prod(n2, n2) - two_prod(n1, n1))
+    let inv = snell_invariant(d_i, normal, n1, carried);
+    (inv.q2_in(n1), inv.q2_in(n2))
 }
 
 /// The refracted direction η (d_i − (d_i·N_o) N_o) − cos θt N_o (Snell's law in vector form,
@@ -233,7 +293,7 @@ impl Encounter {
     fn new(
         d_i: DVec3,
         index: f64,
-        carried: Option<(DVec3, DoubleDouble)>,
+        carried: Option<(DVec3, SnellInvariant)>,
         hit: &InterfaceHit,
         model: CoefficientModel,
     ) -> Self {
@@ -242,7 +302,8 @@ impl Encounter {
         // (n2 cos θt)² = (n1 cos θi)² + (n2 − n1)(n2 + n1), formed exactly in double-double
         // (docs/PHYSICS.md §8), so a cosine that is a small difference of large squares (light
         // leaving a film at near-grazing outside) keeps its digits.
-        let (q2_i, q2_t) = normal_wavevector_squares(d_i, hit.normal, (n1, n2), carried);
+        let invariant = snell_invariant(d_i, hit.normal, n1, carried);
+        let (q2_i, q2_t) = (invariant.q2_in(n1), invariant.q2_in(n2));
         let cos_theta_i = (q2_i.sqrt().to_f64() / n1).min(1.0);
         let mut coefficients = match (hit.optics, model) {
             (SurfaceOptics::IdealMirror, _) => fresnel::ideal_mirror(),
@@ -269,7 +330,7 @@ impl Encounter {
         if let (Some(l), SurfaceOptics::Dielectric { .. }) = (layer, hit.optics)
             && q2_t.hi < 0.0
         {
-            let q2_3 = q2_i + two_prod(l.n_beyond, l.n_beyond) - two_prod(n1, n1);
+            let q2_3 = invariant.q2_in(l.n_beyond);
             let f = fresnel::frustrated_layer(
                 (n1, n2, l.n_beyond),
                 (q2_i, q2_t, q2_3),
@@ -304,8 +365,8 @@ impl Encounter {
             n2,
             cos_theta_i,
             coefficients,
-            q2_i,
             q2_t,
+            invariant,
             tunnel,
         }
     }
@@ -353,8 +414,6 @@ fn split(parent: &mut Ray, hit: &InterfaceHit, model: CoefficientModel) -> Split
 /// (c_s, c_p) it applies, its medium, whether it keeps coherence and its ledger entry.
 struct Branch {
     dir: DVec3,
-    /// The child's (n cos θ)² about the hit's normal ([`Ray::normal_q2`]).
-    q2: DoubleDouble,
     c: [Complex64; 2],
     index: f64,
     keep: bool,
@@ -371,7 +430,6 @@ fn reflected(en: &Encounter, hit: &InterfaceHit) -> Branch {
         // child's frame with it: the p amplitude grew by that at every event, 1e-12 of R (`fringe
         // fuzz --family airy --seed 1`, scene 5779, `tests/suite/truth_found_edges.rs`).
         dir: fresnel::reflect(en.d_i, hit.normal).normalize(),
-        q2: en.q2_i,
         c: [c.r_s, c.r_p],
         index: en.n1,
         keep: hit.coherence.reflected_keeps,
@@ -407,7 +465,6 @@ fn refracted(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
     };
     Some(Branch {
         dir,
-        q2: en.q2_t,
         c: [c.t_s, c.t_p],
         index: en.n2,
         keep: hit.coherence.refracted_keeps,
@@ -431,7 +488,6 @@ fn tunnelled(en: &Encounter, hit: &InterfaceHit) -> Option<Branch> {
             (en.n1, tu.n3),
             tu.q2_3.sqrt().to_f64() / tu.n3,
         ),
-        q2: tu.q2_3,
         c: tu.t,
         index: tu.n3,
         keep: hit.coherence.refracted_keeps,
@@ -464,7 +520,8 @@ fn child_frame(b: &Branch, s: DVec3, a_s: Complex64, a_p: Complex64) -> JonesFra
 /// Turns the split parent `ray` into its child along `b`.
 fn child(ray: &mut Ray, sp: &Split, hit: &InterfaceHit, b: Branch) {
     ray.dir = b.dir;
-    ray.normal_q2 = Some((hit.normal, b.q2));
+    // Every child carries the face's invariant as formed (not re-formed in its own medium).
+    ray.normal_q2 = Some((hit.normal, sp.encounter.invariant));
     child_frame(&b, sp.s, sp.a_s, sp.a_p).apply_to(ray);
     ray.index = b.index;
     if !b.keep && ray.coherence_id != INCOHERENT {

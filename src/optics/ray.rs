@@ -129,14 +129,17 @@ pub struct Ray {
     pub index: f64,
     /// Every phase contribution so far.
     pub ledger: PhaseLedger,
-    /// The squared normal wavevector component q² = (n cos θ)² of the ray with respect to the
-    /// unit normal of the last face it met, in double-double, with that normal; `None` before
-    /// the first face. Snell's law conserves n sin θ, so at the next face *parallel* to that one
-    /// q² crosses into index n' as q'² = q² + n'² − n² exactly (docs/PHYSICS.md §8): the
-    /// cosine leaving a film at near-grazing outside (or into a much lower index) is formed
-    /// without the cancellation of 1 − sin², which from an f64 direction loses all its digits
-    /// (cos θ ~ 1e-8 outside needs sin²θ inside to 1e-32).
-    pub normal_q2: Option<(DVec3, DoubleDouble)>,
+    /// Snell's invariant of the ray about the unit normal of the last face it met, with that
+    /// normal; `None` before the first face. It is held as the squared normal wavevector
+    /// q² = (n cos θ)² in double-double *in the medium where it was formed*
+    /// ([`crate::optics::interaction::SnellInvariant`]): Snell's law conserves n sin θ, so at
+    /// every further face *parallel* to that one each medium's q'² = q² + n'² − n² is formed
+    /// from it directly (docs/PHYSICS.md §8), never by a chain through the media between. The
+    /// cosine leaving a film at near-grazing outside (or into a much lower index) is then
+    /// formed without the cancellation of 1 − sin², which from an f64 direction loses all its
+    /// digits (cos θ ~ 1e-8 outside needs sin²θ inside to 1e-32), and a wave grazing in the
+    /// ambient ((n0 cos θ0)² ~ 1e-32) leaves a denser film with its own q² unchanged.
+    pub normal_q2: Option<(DVec3, crate::optics::interaction::SnellInvariant)>,
 }
 
 impl Ray {

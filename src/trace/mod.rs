@@ -439,9 +439,10 @@ impl ChannelRays {
         ChannelRays::Together { lead, frames }
     }
 
-    /// Give every ray the launch's (n cos θ)² about the first face ([`SolvedPath::launch_normal_q2`]).
+    /// Give every ray the launch's Snell invariant about the first face
+    /// ([`SolvedPath::launch_normal_q2`]).
     #[inline]
-    fn carry_launch_q2(&mut self, q2: Option<(DVec3, DoubleDouble)>) {
+    fn carry_launch_q2(&mut self, q2: Option<(DVec3, crate::optics::interaction::SnellInvariant)>) {
         match self {
             ChannelRays::Together { lead, .. } => lead.normal_q2 = q2,
             ChannelRays::Apart(rays) => rays.iter_mut().for_each(|r| r.normal_q2 = q2),

@@ -32,7 +32,7 @@ use super::beats::{Beats, SpectralContribution};
 use super::tail::{film_thickness, last_two_reflections, one_film};
 use super::{Arrival, TraceSettings, arrivals_with, phase_cycles, plan};
 use crate::accumulate::Accumulator;
-use crate::optics::double_double::{DoubleDouble, two_prod};
+use crate::optics::double_double::DoubleDouble;
 use crate::optics::material::{Dispersion, IndexError, Medium};
 use crate::optics::ray::Field3;
 use crate::scene::source::Emitter;
@@ -232,18 +232,13 @@ fn extension(
     }
     let n_in = deep_path.indices[start + 1];
     let lead = &arrivals[deepest[0]].vector;
-    let Some((m, q2_exit)) = lead.normal_q2 else {
+    let Some((m, invariant)) = lead.normal_q2 else {
         return refuse("the exit ray carries no normal wavevector");
     };
     if m != normal && m != -normal {
         return refuse("the exit face is not parallel to the film");
     }
-    let n_exit = lead.index;
-    let q2_in = if n_in == n_exit {
-        q2_exit
-    } else {
-        q2_exit + two_prod(n_in, n_in) - two_prod(n_exit, n_exit)
-    };
+    let q2_in = invariant.q2_in(n_in);
     if q2_in.hi <= 0.0 {
         return refuse("no propagating wave inside the film");
     }

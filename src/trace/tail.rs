@@ -25,7 +25,7 @@
 
 use super::{Arrival, phase_cycles};
 use crate::accumulate::fidelity::Fidelity;
-use crate::optics::double_double::{DoubleDouble, two_prod};
+use crate::optics::double_double::DoubleDouble;
 use crate::optics::interaction::indices_for;
 use crate::optics::ray::{Field3, INCOHERENT, LedgerEntry, Ray};
 use crate::scene::geometry::Extent;
@@ -330,20 +330,15 @@ pub fn close(
                 return refuse("the orders do not stay coherent with each other");
             }
             // The squared normal wavevector on the exit side, as the tracer carried it.
-            let Some((m, q2_exit)) = v.normal_q2 else {
+            let Some((m, invariant)) = v.normal_q2 else {
                 return refuse("the exit ray carries no normal wavevector");
             };
             if m != nx && m != -nx {
                 return refuse("the exit face is not parallel to the film");
             }
-            let n_exit = v.index;
-            let q2_at = |n: f64| {
-                if n == n_exit {
-                    q2_exit
-                } else {
-                    q2_exit + two_prod(n, n) - two_prod(n_exit, n_exit)
-                }
-            };
+            // Every medium's (n cos θ)² from the invariant as the ray carried it (formed in
+            // one medium, never chained through the others).
+            let q2_at = |n: f64| invariant.q2_in(n);
             let k_of = |n: f64| {
                 let q2 = q2_at(n);
                 if q2.hi >= 0.0 {

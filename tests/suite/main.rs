@@ -45,6 +45,7 @@ mod trail;
 mod truth;
 mod truth_airy_tracer;
 mod truth_beyond_critical_plates;
+mod truth_carried_invariant;
 mod truth_found_edges;
 mod truth_geometry;
 mod truth_grazing;

@@ -2,7 +2,6 @@
 //! limits of a case (internal reflections, sequence count).
 
 use super::*;
-use crate::optics::double_double::two_prod;
 
 /// Limits of sequence enumeration.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -45,18 +44,19 @@ pub fn discover_sequences(
     // order with an internal reflection was missing from the plan (T of a film on a substrate
     // 36–44 % off: `fringe fuzz --family airy --seed 1`, scene 7304,
     // `tests/suite/truth_grazing_brewster.rs`).
-    let stack_launch = match emitter {
+    let launch = match emitter {
         Emitter::PlaneWave {
             direction,
             reference_point,
         } => {
             let d = direction.normalize();
-            let (launch, _) = plane_wave_launch(scene, d, reference_point);
-            (launch != reference_point && d.is_finite()).then_some((launch, d))
+            stack_launch(scene, d, reference_point)
+                .filter(|_| d.is_finite())
+                .map(|(launch, _)| (launch, d))
         }
         _ => None,
     };
-    let starts = match stack_launch {
+    let starts = match launch {
         Some(start) => vec![start],
         None => probe_targets
             .iter()
@@ -115,7 +115,7 @@ struct Probe {
     d: DVec3,
     n: f64,
     from: Option<usize>,
-    carried: Option<(DVec3, DoubleDouble)>,
+    carried: Option<(DVec3, interaction::SnellInvariant)>,
     internal: usize,
     parent: Option<(usize, Event)>,
     depth: usize,
@@ -193,7 +193,8 @@ fn explore_one(
     // total reflection where the ray refracts out, and every order through a film at
     // grazing incidence was missing from the plan (issue #12: the Airy tail could not be
     // closed, `fringe fuzz --family airy --seed 1`, scenes 6, 69, 135, 163, 217).
-    let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), p.carried);
+    let invariant = interaction::snell_invariant(d, normal, n1, p.carried);
+    let q2_t = invariant.q2_in(n2);
     let is_internal = n != optics.ambient_index;
     let event = |kind| Some((node, Event { surface: j, kind }));
     if !is_internal || p.internal < limits.max_internal_reflections {
@@ -202,7 +203,7 @@ fn explore_one(
             d: fresnel::reflect(d, normal),
             n,
             from: Some(j),
-            carried: Some((normal, q2_i)),
+            carried: Some((normal, invariant)),
             internal: p.internal + usize::from(is_internal),
             parent: event(EventKind::Reflect),
             depth: p.depth + 1,
@@ -218,7 +219,15 @@ fn explore_one(
     };
     // Beyond the critical angle with a layer behind the face: the tunnelled wave.
     if q2_t.hi < 0.0
-        && let Some(c) = tunnelled(scene, optics, (x, d, j), (n1, n2), (q2_i, q2_t), p, node)
+        && let Some(c) = tunnelled(
+            scene,
+            optics,
+            (x, d, j),
+            (n1, n2),
+            (invariant, q2_t),
+            p,
+            node,
+        )
     {
         children.push(c);
     }
@@ -228,7 +237,7 @@ fn explore_one(
             d: d_t,
             n: n2,
             from: Some(j),
-            carried: Some((normal, q2_t)),
+            carried: Some((normal, invariant)),
             internal: p.internal,
             parent: event(EventKind::Refract),
             depth: p.depth + 1,
@@ -246,7 +255,7 @@ fn tunnelled(
     optics: &SceneOptics,
     (x, d, j): (DVec3, DVec3, usize),
     (n1, n2): (f64, f64),
-    (q2_i, q2_t): (DoubleDouble, DoubleDouble),
+    (invariant, q2_t): (interaction::SnellInvariant, DoubleDouble),
     p: &Probe,
     node: usize,
 ) -> Option<Probe> {
@@ -259,7 +268,7 @@ fn tunnelled(
         return None;
     }
     let n3 = l.n_beyond;
-    let q2_3 = q2_i + two_prod(n3, n3) - two_prod(n1, n1);
+    let q2_3 = invariant.q2_in(n3);
     if q2_3.hi <= 0.0 {
         return None;
     }
@@ -270,7 +279,7 @@ fn tunnelled(
         d: d_3,
         n: n3,
         from: Some(partner),
-        carried: Some((normal, q2_3)),
+        carried: Some((normal, invariant)),
         internal: p.internal,
         parent: Some((
             node,

@@ -62,8 +62,8 @@ pub(super) struct Beginning {
     pub(super) out_of_extent: Option<PathError>,
     /// The first blocked finite segment, if any.
     pub(super) blocked: Option<PathError>,
-    /// The normal and (n cos θ)² after the last event (`Ray::normal_q2`).
-    pub(super) q2: Option<(DVec3, DoubleDouble)>,
+    /// The normal and Snell's invariant after the last event (`Ray::normal_q2`).
+    pub(super) q2: Option<(DVec3, super::stack::Invariant)>,
     /// Where the next segment starts and the surface it leaves: the last point and the last
     /// event's surface, except after a tunnel event, where it is the foot of the normal on the
     /// layer's far face and that face ([`tunnel_exit`]).
@@ -175,7 +175,7 @@ impl<'a> FarFieldPaths<'a> {
         } else {
             (step.x, Some(ev.surface))
         };
-        next.q2 = Some(step.q2);
+        next.q2 = Some(step.p2);
         next.denser_reflections += usize::from(step.denser);
         next.has_tir |= step.tir;
         // The finite segment k, from the last point to this event, as `finish` measures it:

@@ -275,12 +275,14 @@ pub struct SolvedPath {
     pub has_tir: bool,
     /// S², the intensity factor of geometric spreading (1 when spreading is off).
     pub spreading: f64,
-    /// The launch's (n cos θ)² about the first event's plane normal, in double-double, with
-    /// that normal ([`crate::optics::ray::Ray::normal_q2`]), where the launch came from Snell's
-    /// invariant of a parallel stack (`stack::parallel_stack_launch`): rays start with it, so
-    /// a beam grazing inside a plate (cos θt ~ 1e-8) keeps its angle, which the f64 launch
-    /// direction rounds away (docs/PHYSICS.md §8). `None` otherwise.
-    pub launch_normal_q2: Option<(DVec3, DoubleDouble)>,
+    /// The launch's Snell invariant about the first event's plane normal, with that normal
+    /// ([`crate::optics::ray::Ray::normal_q2`]), where the launch came from Snell's invariant of
+    /// a parallel stack (`stack::parallel_stack_launch`; held as the (n cos θ)² of the medium
+    /// the beam grazes in): rays start with it, so a beam grazing inside a plate (cos θt ~
+    /// 1e-12) keeps its angle, which the f64 launch direction rounds away, and its amplitude,
+    /// which an invariant re-formed in the ambient first rounds (docs/PHYSICS.md §8). `None`
+    /// otherwise.
+    pub launch_normal_q2: Option<(DVec3, interaction::SnellInvariant)>,
 }
 
 impl SolvedPath {
@@ -448,10 +450,17 @@ pub fn plane_wave_launch(
     direction: DVec3,
     reference: DVec3,
 ) -> (DVec3, DoubleDouble) {
-    let from_reference = (reference, DoubleDouble::ZERO);
-    let Some(first) = scene.surfaces.first() else {
-        return from_reference;
-    };
+    stack_launch(scene, direction, reference).unwrap_or((reference, DoubleDouble::ZERO))
+}
+
+/// [`plane_wave_launch`]'s launch 1 mm (or more) before a film stack, `None` where the rays
+/// start at the reference point.
+pub(crate) fn stack_launch(
+    scene: &Scene,
+    direction: DVec3,
+    reference: DVec3,
+) -> Option<(DVec3, DoubleDouble)> {
+    let first = scene.surfaces.first()?;
     let nu = first.plane.normal;
     let stack = scene.surfaces.iter().all(|s| {
         matches!(s.extent, Extent::Unbounded)
@@ -459,7 +468,7 @@ pub fn plane_wave_launch(
             && (s.plane.normal == nu || s.plane.normal.cross(nu).length_squared() <= 1e-30)
     });
     if !stack {
-        return from_reference;
+        return None;
     }
     // The first plane met: the nearest ahead of the reference along the direction.
     let nearest = scene
@@ -480,18 +489,12 @@ pub fn plane_wave_launch(
             .intersect(reference, direction)
             .is_some_and(|t| t > 0.0)
     });
-    match nearest {
-        Some((t, surf)) => {
-            let standoff = launch_standoff(surf.plane.point, direction.dot(nu).abs());
-            if all_ahead && t > standoff {
-                let launch = surf.plane.point - standoff * direction;
-                (launch, projection(direction, launch, reference))
-            } else {
-                from_reference
-            }
-        }
-        _ => from_reference,
-    }
+    let (t, surf) = nearest?;
+    let standoff = launch_standoff(surf.plane.point, direction.dot(nu).abs());
+    (all_ahead && t > standoff).then(|| {
+        let launch = surf.plane.point - standoff * direction;
+        (launch, projection(direction, launch, reference))
+    })
 }
 
 /// The least distance (m) along a plane wave's direction from its stack launch to the point
@@ -610,9 +613,8 @@ pub fn solve(
         }
         _ => None,
     };
-    let launch_q2 = stack.map(|(_, q2, _)| q2);
-    let launch_p2 = stack.map(|(_, (m, _), invariant)| (m, invariant));
-    if let Some((d, _, _)) = stack {
+    let launch_p2 = stack.map(|(_, carried)| carried);
+    if let Some((d, _)) = stack {
         guess_dir = d;
     } else if let (Some(first), Emitter::Point { .. } | Emitter::Line { .. }) =
         (seq.first(), emitter)
@@ -888,7 +890,7 @@ pub fn solve(
         start,
     )?;
     if x == [0.0, 0.0] {
-        path.launch_normal_q2 = launch_q2;
+        path.launch_normal_q2 = launch_p2;
     }
     Ok(path)
 }

@@ -18,18 +18,28 @@ pub(super) struct PlaneStep {
     pub(super) tir: bool,
     /// n2 cos θt/(n1 cos θi) for a refraction, 1 for a reflection.
     pub(super) refraction_factor: f64,
-    /// The normal and (n cos θ)² after the event, in double-double (`Ray::normal_q2`).
-    pub(super) q2: (DVec3, DoubleDouble),
-    /// The normal and Snell's invariant p² = (n sin θ)² about it ([`Invariant`]): what
-    /// [`trace_planes_carrying`] carries to the next parallel face (docs/PHYSICS.md §8).
+    /// The normal and Snell's invariant about it ([`Invariant`], as `Ray::normal_q2` carries
+    /// it): what the next event at a parallel face forms its normal wavevectors from
+    /// (docs/PHYSICS.md §8).
     pub(super) p2: (DVec3, Invariant),
 }
 
+/// Snell's invariant held as one medium's (n cos θ)² (the tracer's
+/// [`crate::optics::interaction::SnellInvariant`], `Ray::normal_q2`): the path solver and the
+/// tracer carry the same thing and form every normal wavevector from it the same way.
+pub(super) use crate::optics::interaction::SnellInvariant as Invariant;
+
 /// Event `k` of a sequence, `ev`, met by the ray from `o` along `d` in index `n`, carrying
-/// `carried` ([`crate::optics::ray::Ray::normal_q2`]): TIR verdicts, refracted directions and the
-/// refraction factor from the double-double normal wavevectors the tracer uses
-/// ([`interaction::normal_wavevector_squares`]). `from`: the surface of the previous event,
-/// where the ray starts (its point `o` lies on that plane).
+/// Snell's invariant about the normal of its last face (`carried`, in double-double, as the
+/// tracer's ray does, [`crate::optics::ray::Ray::normal_q2`]; `None` forms it from the f64
+/// direction). TIR verdicts, refracted directions and the refraction factor come from the
+/// normal wavevector squares (n1 cos θi)², (n2 cos θt)² formed from that invariant
+/// ([`interaction::normal_wavevector_squares`]), each as well conditioned as the invariant
+/// itself, also where it is small (grazing in a plate of low index under a dense ambient).
+/// Re-forming the next medium's q² + n2² − n1² at every face instead loses ~n1²·1e-32/q_t² of
+/// it: 2e-12 of tan θt for n = 4.76 over n = 0.0092 at tan θt = 3e7, and the landing stalled at
+/// 3.5e-10 m (`fringe fuzz --family two_beam_plate --seed 1`, scene 25). `from`: the surface of
+/// the previous event, where the ray starts (its point `o` lies on that plane).
 #[inline(always)]
 pub(super) fn step_planes(
     scene: &Scene,
@@ -37,75 +47,7 @@ pub(super) fn step_planes(
     k: usize,
     ev: Event,
     (o, d, n): (DVec3, DVec3, f64),
-    carried: Option<(DVec3, DoubleDouble)>,
-    from: Option<usize>,
-) -> Result<PlaneStep, PathError> {
-    let carried = carried.map(|(m, q2)| (m, Carried::NormalQ2(q2)));
-    step_planes_carried(scene, optics, k, ev, (o, d, n), carried, from)
-}
-
-/// What a ray carries to the next parallel face, in double-double (docs/PHYSICS.md §8).
-#[derive(Clone, Copy)]
-pub(super) enum Carried {
-    /// (n cos θ)² in the ray's medium (`Ray::normal_q2`).
-    NormalQ2(DoubleDouble),
-    /// Snell's invariant p² = (n sin θ)² ([`Invariant`]).
-    TangentialP2(Invariant),
-}
-
-/// Snell's invariant p² = (n sin θ)² held as p² = n_ref² − q²_ref: the squared normal
-/// wavevector q²_ref = (n_ref cos θ_ref)² of the segments in index `n_ref` (double-double).
-/// In any index n of the stack the normal wavevector square is then
-/// (n cos θ)² = (n² − n_ref²) + q²_ref, and exactly q²_ref in n_ref itself: a beam grazing in
-/// n_ref (cos θ ~ 1e-11) keeps its cosine to the relative precision of q²_ref, where forming it
-/// as n_ref² − p² from p² rounded to double-double (~1e-32 of p²) loses it to ~1e-32/cos²θ
-/// (1e-10 of tan θ: a 1.2 nm plate of n = 0.0065 in air crossed 248 m sideways missed its
-/// probe by 5e-9 m, `fringe fuzz --family two_beam_plate --seed 1`, scene 271;
-/// `tests/suite/truth_plate_landing.rs`). `n_ref = 0` holds p² itself (q²_ref = −p²).
-#[derive(Clone, Copy, Debug)]
-pub(super) struct Invariant {
-    /// The reference index n_ref (0: q²_ref is −p²).
-    pub(super) n_ref: f64,
-    /// (n_ref cos θ_ref)², double-double.
-    pub(super) q2_ref: DoubleDouble,
-}
-
-impl Invariant {
-    /// p² itself (`n_ref` = 0).
-    pub(super) fn from_p2(p2: DoubleDouble) -> Self {
-        Invariant {
-            n_ref: 0.0,
-            q2_ref: -p2,
-        }
-    }
-
-    /// (n cos θ)² in index `n` (double-double, [`Invariant`]).
-    pub(super) fn q2_in(self, n: f64) -> DoubleDouble {
-        if n == self.n_ref {
-            self.q2_ref
-        } else {
-            two_prod(n, n) - two_prod(self.n_ref, self.n_ref) + self.q2_ref
-        }
-    }
-}
-
-/// [`step_planes`] for a ray carrying Snell's invariant p² = (n sin θ)² about the normal of
-/// its last face (`carried`, in double-double; `None` forms it from the f64 direction), or
-/// its (n cos θ)² as [`step_planes`] does. At a
-/// parallel face the normal wavevector squares are (n1 cos θi)² = n1² − p² and (n2 cos θt)² =
-/// n2² − p² (docs/PHYSICS.md §8): each is as well conditioned as p² itself, also where it is
-/// small (grazing in a plate of low index under a dense ambient). Carrying (n cos θ)² instead
-/// and forming q² + n2² − n1² loses ~n1²·1e-32/q_t² of it: 2e-12 of tan θt for n = 4.76 over
-/// n = 0.0092 at tan θt = 3e7, and the landing stalled at 3.5e-10 m (`fringe fuzz --family
-/// two_beam_plate --seed 1`, scene 25).
-#[inline(always)]
-pub(super) fn step_planes_carried(
-    scene: &Scene,
-    optics: &SceneOptics,
-    k: usize,
-    ev: Event,
-    (o, d, n): (DVec3, DVec3, f64),
-    carried: Option<(DVec3, Carried)>,
+    carried: Option<(DVec3, Invariant)>,
     from: Option<usize>,
 ) -> Result<PlaneStep, PathError> {
     let surf = &scene.surfaces[ev.surface];
@@ -113,19 +55,8 @@ pub(super) fn step_planes_carried(
     let normal = surf.plane.normal;
     let (n1, n2) = indices_for(so, normal, d, n);
     let carried = carried.filter(|(m, _)| *m == normal || *m == -normal);
-    let (q2_i, q2_t, p2) = match carried {
-        Some((_, Carried::TangentialP2(inv))) => (inv.q2_in(n1), inv.q2_in(n2), inv),
-        Some((m, Carried::NormalQ2(q2))) => {
-            let (q2_i, q2_t) =
-                interaction::normal_wavevector_squares(d, normal, (n1, n2), Some((m, q2)));
-            (q2_i, q2_t, Invariant::from_p2(two_prod(n1, n1) - q2_i))
-        }
-        None => {
-            let (q2_i, q2_t) = interaction::normal_wavevector_squares(d, normal, (n1, n2), None);
-            (q2_i, q2_t, Invariant::from_p2(two_prod(n1, n1) - q2_i))
-        }
-    };
-    let carried = carried.map(|(m, _)| (m, q2_i));
+    let p2 = interaction::snell_invariant(d, normal, n1, carried);
+    let (q2_i, q2_t) = (p2.q2_in(n1), p2.q2_in(n2));
     // The distance to the plane: where the ray carries its (n cos θ)² about this plane's normal
     // (a parallel face, or a stack launch), along the cosine formed from it, not from d·N of
     // the f64 direction, whose normal part is off by ~1e-16 absolute on a tilted plane: grazing
@@ -184,7 +115,6 @@ pub(super) fn step_planes_carried(
             denser: mirror || n1 < n2 || (splitter && d.dot(normal) < 0.0),
             tir: !mirror && !splitter && q2_t.hi < 0.0,
             refraction_factor: 1.0,
-            q2: (normal, q2_i),
             p2: (normal, p2),
         },
         EventKind::Refract => {
@@ -207,7 +137,6 @@ pub(super) fn step_planes_carried(
                 denser: false,
                 tir: false,
                 refraction_factor: (q2_t.sqrt().to_f64() / q2_i.sqrt().to_f64()),
-                q2: (normal, q2_t),
                 p2: (normal, p2),
             }
         }
@@ -238,7 +167,7 @@ fn tunnel_step(
         Some(SurfaceOptics::Dielectric { .. })
     );
     let n3 = layer.n_beyond;
-    let q2_3 = q2_i + two_prod(n3, n3) - two_prod(n1, n1);
+    let q2_3 = p2.q2_in(n3);
     if !dielectric || n1 == n2 || q2_t.hi >= 0.0 || q2_3.hi <= 0.0 {
         return Err(no);
     }
@@ -249,7 +178,6 @@ fn tunnel_step(
         denser: false,
         tir: false,
         refraction_factor: q2_3.sqrt().to_f64() / q2_i.sqrt().to_f64(),
-        q2: (normal, q2_3),
         p2: (normal, p2),
     })
 }
@@ -269,7 +197,7 @@ pub(super) fn trace_planes(
 
 /// [`trace_planes`] for a launch that carries Snell's invariant p² = (n sin θ)² about the
 /// first event's normal (in double-double, [`parallel_stack_launch`]); every event passes
-/// it on to the next ([`step_planes_carried`]).
+/// it on to the next ([`step_planes`]).
 pub(super) fn trace_planes_carrying(
     scene: &Scene,
     optics: &SceneOptics,
@@ -282,12 +210,11 @@ pub(super) fn trace_planes_carrying(
         g.start(origin, dir, optics.ambient_index, 0);
     }
     let mut ray = (origin, dir, optics.ambient_index);
-    let mut carried = carried.map(|(m, p2)| (m, Carried::TangentialP2(p2)));
+    let mut carried = carried;
     for (k, ev) in seq.iter().enumerate() {
         let from = k.checked_sub(1).map(|j| seq[j].surface);
-        let step = step_planes_carried(scene, optics, k, *ev, ray, carried, from)?;
-        let (m, p2) = step.p2;
-        carried = Some((m, Carried::TangentialP2(p2)));
+        let step = step_planes(scene, optics, k, *ev, ray, carried, from)?;
+        carried = Some(step.p2);
         g.denser_reflections += usize::from(step.denser);
         g.has_tir |= step.tir;
         g.refraction_factor *= step.refraction_factor;
@@ -414,10 +341,11 @@ impl LaunchModel {
 /// method safeguarded by bisection on the bracket converges from any start. The segment
 /// indices depend only on the sequence, not on the launch angle.
 ///
-/// Returns the launch direction, with ν the launch's q0² = (n0 cos θ0)² = (n0 − p)(n0 + p) in
-/// double-double (the tracer's ray carries it, `Ray::normal_q2`) and Snell's invariant (the
-/// path solver's [`trace_planes_carrying`] carries it; where the beam grazes in the least index
-/// n_g of the stack, held as that medium's own (n_g cos θ_g)², [`grazing_invariant`]), so every
+/// Returns the launch direction, with ν and Snell's invariant in double-double (the path
+/// solver's [`trace_planes_carrying`] and the tracer's ray, `Ray::normal_q2`, carry it): where
+/// the beam grazes in the least index n_g of the stack, held as that medium's own
+/// (n_g cos θ_g)² ([`grazing_invariant`]), else as the launch's (n0 cos θ0)² = (n0 − p)(n0 + p),
+/// so every
 /// segment's cosine is formed from the invariant, not from the f64 launch direction, whose
 /// rounding (~1e-16 of sin θ0)
 /// is a relative error of ~1e-16/cos²θk in a segment grazing at θk (the beam through a plate
@@ -429,7 +357,7 @@ pub(super) fn parallel_stack_launch(
     seq: &[Event],
     source: DVec3,
     target: DVec3,
-) -> Option<(DVec3, (DVec3, DoubleDouble), Invariant)> {
+) -> Option<(DVec3, (DVec3, Invariant))> {
     use crate::optics::double_double::two_diff;
     let nu = scene.surfaces[seq.first()?.surface].plane.normal;
     // The target relative to the source from exact coordinate differences, split along ν and
@@ -575,21 +503,16 @@ pub(super) fn parallel_stack_launch(
         }
         p
     };
-    let invariant = grazing_invariant(runs, d, p).unwrap_or(Invariant::from_p2(p * p));
-    let p = if invariant.n_ref == 0.0 {
-        p
-    } else {
-        (two_prod(invariant.n_ref, invariant.n_ref) - invariant.q2_ref).sqrt()
+    // Held in the grazing medium where the beam grazes there, else as the launch's own
+    // (n0 cos θ0)² = (n0 − p)(n0 + p): the rays carry it as formed (`Ray::normal_q2`).
+    let (invariant, p) = match grazing_invariant(runs, d, p) {
+        Some(inv) => (inv, (two_prod(inv.n_ref, inv.n_ref) - inv.q2_ref).sqrt()),
+        None => (Invariant::in_medium(n0, (dd(n0) - p) * (dd(n0) + p)), p),
     };
     let sin0 = (p / dd(n0)).to_f64();
-    let q0_sq = if invariant.n_ref == 0.0 {
-        (dd(n0) - p) * (dd(n0) + p)
-    } else {
-        invariant.q2_in(n0)
-    };
-    let cos0 = (q0_sq.sqrt() / dd(n0)).to_f64();
+    let cos0 = (invariant.q2_in(n0).sqrt() / dd(n0)).to_f64();
     let u = if d == 0.0 { DVec3::ZERO } else { lateral / d };
-    Some((sin0 * u + cos0 * first_up * nu, (nu, q0_sq), invariant))
+    Some((sin0 * u + cos0 * first_up * nu, (nu, invariant)))
 }
 
 /// Snell's invariant of a stack launch as the normal wavevector of its grazing medium
