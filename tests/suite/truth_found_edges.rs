@@ -265,3 +265,109 @@ fn young_exact_keeps_its_relative_digits_at_dark_fringes() {
         "the former form's worst error {naive_worst:e}"
     );
 }
+
+/// The two found Young scenes with line sources 100–500 m out, as held and each with every
+/// source and probe coordinate one ulp away (`tools/line_source_held_mpmath.py`).
+const HELD: &str = "line_source_held_mpmath.csv";
+
+/// A line source's scene is judged as held, and rightly (docs/PHYSICS.md §8, "Representation
+/// sensitivity"): tracer and closed form read the same binary64 point and axis (the loader's
+/// normalized axis, normalized once more by the same f64 `normalize` on both sides), so a
+/// rounding of the coordinates between the scene as meant and as held moves both alike. Moving
+/// every coordinate of scene 5173 (9633) by one ulp, the way that raises I, moves the 50-digit
+/// intensity by 1.8e-10 (1.3e-11) of the profile — the written-versus-held gap of a generator's
+/// exact scene — while each side follows each scene to ≤ 1e-14 of its own 50 digits: the gate
+/// resolves scenes one rounding apart, and a band widened by that term would pass tracer errors
+/// 13–180× the 1e-12 it now catches.
+#[test]
+fn a_line_source_scene_one_rounding_away_moves_tracer_and_closed_form_alike() {
+    let truth = support::mpmath_profiles(HELD);
+    assert_eq!(truth.len(), 4);
+    let mut bad = Vec::new();
+    for (name, values) in &truth {
+        let traced = support::traced_error(name, values);
+        let closed = support::closed_form_error(name, values);
+        println!("{name}: traced {traced:e}, closed form {closed:e} off its own 50 digits");
+        if !(traced <= 1e-14 && closed <= 1e-14) {
+            bad.push(format!("{name}: traced {traced:e}, closed form {closed:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+    for (name, at_least) in [
+        ("fuzz_young_exact_s1_5173", 1e-10),
+        ("fuzz_young_exact_s1_9633", 1e-11),
+    ] {
+        let (held, moved) = (&truth[name], &truth[&format!("{name}_ulp")]);
+        let scale = held.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+        let gap = held
+            .iter()
+            .zip(moved)
+            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / scale));
+        println!("{name}: one ulp of every coordinate moves I by {gap:e} of the profile");
+        assert!(gap >= at_least, "{name}: gap {gap:e}");
+    }
+}
+
+/// At the band the gate judges scene 5173 with (its derived tolerance, at least 1e-12; no
+/// representation term for line sources) an amplitude error on one path is caught within the
+/// library's 10× of the band (`detection::FLOOR_FACTOR`); a band widened by the coordinates'
+/// rounding (the 1.8e-10 of the test above) would let through amplitude errors ≥ 100× and phase
+/// errors ≥ 10× larger (measured: 1.0e-12 → 1.9e-10 and 2.1e-7 → 2.0e-5 rad). (The two probe
+/// points straddle the central bright fringe, where I is stationary in the phase to first
+/// order: hence a phase floor of 2.1e-7 rad at a band of 1e-12.)
+#[test]
+fn the_line_source_band_catches_errors_a_coordinate_term_would_hide() {
+    use fringe::harness::case::detection::{FLOOR_FACTOR, Floor};
+    use fringe::harness::case::{load, run};
+    let name = "fuzz_young_exact_s1_5173";
+    let text = std::fs::read_to_string(file(name)).unwrap();
+    let value: serde_json::Value = serde_json::from_str(&text).unwrap();
+    let parse = |t: &str| load::parse(&file(name), t).expect("a valid case");
+    let r = run::run_with(&parse(&text), false).unwrap();
+    assert_eq!(
+        r.representation_tolerance(),
+        0.0,
+        "no term for line sources"
+    );
+    let band = r.metrics[0]
+        .derived_tolerance(&r.rounding, 1e-12)
+        .unwrap()
+        .min(1e-9);
+    let truth = support::mpmath_profiles(HELD);
+    let (held, moved) = (&truth[name], &truth[&format!("{name}_ulp")]);
+    let scale = held.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    let gap = held
+        .iter()
+        .zip(moved)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / scale));
+    let floors = |tolerance: f64| {
+        let mut judged = value.clone();
+        judged["references"][0]["tolerances"]["vector"] = serde_json::json!(tolerance);
+        let d = run::run_with(&parse(&judged.to_string()), true)
+            .unwrap()
+            .detection
+            .expect("detection floors");
+        println!(
+            "{name}: band {tolerance:e}: phase {:?}, amplitude {:?}",
+            d.phase_rad, d.amplitude
+        );
+        match (d.phase_rad, d.amplitude) {
+            (Floor::Caught(p), Floor::Caught(a)) => (p, a),
+            other => panic!("{other:?} at band {tolerance:e}"),
+        }
+    };
+    let (phase, amplitude) = floors(band);
+    let (phase_widened, amplitude_widened) = floors(band + gap);
+    assert!(
+        amplitude <= FLOOR_FACTOR * band,
+        "amplitude floor {amplitude:e}"
+    );
+    assert!(
+        100.0 * amplitude <= amplitude_widened,
+        "{amplitude:e} vs {amplitude_widened:e}"
+    );
+    assert!(
+        10.0 * phase <= phase_widened,
+        "{phase:e} vs {phase_widened:e}"
+    );
+}
