@@ -33,6 +33,7 @@ mp.mp.dps = 50
 CASES = [
     "fuzz_young_exact_s1_5173",
     "fuzz_young_exact_s1_9633",
+    "fuzz_young_exact_s2_2559",
     "fuzz_wedge_s1_9953",
     "fuzz_airy_s1_5779",
     "fuzz_airy_s1_5779_p",

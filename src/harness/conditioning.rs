@@ -338,9 +338,10 @@ pub const DIRECTION_ROUNDING: f64 = 2.0 * UNIT_ROUNDOFF;
 /// the incident direction turns by δθ toward e_in (⊥ d_in) and the exit direction by δθ_out
 /// toward e_out (the in-plane axis of the orders' walk); δθ_out = δθ n_in cos θ_in /
 /// (n_out cos θ_out) through Snell's law at the first and last face (1 for a reflection). Then
-/// δI = Σ_g 2 Re(E_g* · Σ_k i 2π δΔS_k/λ E_k e^{iφ_k}). 0 for point and line sources (their
-/// positions are held to u|X| in every frame, which the path terms of
-/// [`intensity_rounding`] already carry) and for a single arrival. A closed Airy tail counts
+/// δI = Σ_g 2 Re(E_g* · Σ_k i 2π δΔS_k/λ E_k e^{iφ_k}). 0 for point and line sources (the
+/// gate judges the scene as held: a line source's closed form reads the same f64 point and
+/// axis as the tracer, so a rounding of them moves both sides alike, docs/PHYSICS.md §8;
+/// `tests/suite/truth_found_edges.rs`) and for a single arrival. A closed Airy tail counts
 /// at the offsets of the order it starts from (its further orders carry at most the tail
 /// bound's share of the field). `vector`: the arrivals' `vector` contributions, as for
 /// [`intensity_rounding`].

@@ -61,6 +61,17 @@ pub fn path_phasor(s_m: TwoFloat, lambda_m: f64) -> Complex64 {
     crate::accumulate::phasor_from_cycles(frac)
 }
 
+/// The distance q ∈ [0, 1/2] of `s_m`/`lambda_m` (cycles of an optical path `s_m`, m, at vacuum
+/// wavelength `lambda_m`) from the nearest half-integer, formed in double-double and rounded
+/// once: a two-beam dark fringe is q = 0, and 1 + cos(2π s/λ) = 2 sin²(π q) keeps its relative
+/// digits there, where 1 + cos of a rounded phase keeps only 2.2e-16 absolute.
+pub fn half_cycle_distance(s_m: TwoFloat, lambda_m: f64) -> f64 {
+    let cycles = s_m / lambda_m;
+    let frac = cycles - cycles.hi().round();
+    let frac = if frac.hi() < 0.0 { -frac } else { frac };
+    f64::from(TwoFloat::from(0.5) - frac).clamp(0.0, 0.5)
+}
+
 /// A unit vector in double-double: `v/|v|` (any nonzero length).
 pub fn unit(v: DVec3) -> [TwoFloat; 3] {
     let len =
