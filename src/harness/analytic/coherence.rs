@@ -61,16 +61,46 @@ pub fn two_beam_normal_reflectance(
     n2_d: twofloat::TwoFloat,
     lambda_m: f64,
 ) -> f64 {
-    use super::precise::div;
-    use twofloat::TwoFloat;
-    let (t1, t2, t3) = (TwoFloat::from(n1), TwoFloat::from(n2), TwoFloat::from(n3));
-    let s12 = t1 + t2;
-    let a1 = div(t1 - t2, s12);
-    // t12 r23 t21 = (2 n1/(n1+n2)) ((n2−n3)/(n2+n3)) (2 n2/(n1+n2)).
-    let a2 = div(t1 * t2 * 4.0 * (t2 - t3), s12 * s12 * (t2 + t3));
-    let cycles = div(n2_d, lambda_m.into());
-    let frac = cycles - cycles.hi().round();
-    let s = sin_cycles_dd(frac);
-    let sum = a1 + a2;
-    f64::from(sum * sum - a1 * a2 * s * s * 4.0)
+    TwoBeamNormal::new(n1, n2, n3).reflectance(n2_d, lambda_m)
+}
+
+/// The two beams of [`two_beam_normal_reflectance`] for one set of indices: a1 = r12 and
+/// a2 = t12 r23 t21 in double-double. Formed once and reused across the wavelengths of a
+/// spectrum where the indices do not change (non-dispersive media): the same numbers, so the
+/// same reflectance to the bit.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct TwoBeamNormal {
+    /// Indices above, inside and below the plate.
+    pub indices: [f64; 3],
+    a1: twofloat::TwoFloat,
+    a2: twofloat::TwoFloat,
+}
+
+impl TwoBeamNormal {
+    /// The beams' amplitudes for the indices `n1` (above), `n2` (the plate), `n3` (below).
+    pub fn new(n1: f64, n2: f64, n3: f64) -> Self {
+        use super::precise::div;
+        use twofloat::TwoFloat;
+        let (t1, t2, t3) = (TwoFloat::from(n1), TwoFloat::from(n2), TwoFloat::from(n3));
+        let s12 = t1 + t2;
+        let a1 = div(t1 - t2, s12);
+        // t12 r23 t21 = (2 n1/(n1+n2)) ((n2−n3)/(n2+n3)) (2 n2/(n1+n2)).
+        let a2 = div(t1 * t2 * 4.0 * (t2 - t3), s12 * s12 * (t2 + t3));
+        TwoBeamNormal {
+            indices: [n1, n2, n3],
+            a1,
+            a2,
+        }
+    }
+
+    /// (a1 + a2)² − 4 a1 a2 sin²(δ/2) at vacuum wavelength `lambda_m` for the optical thickness
+    /// `n2_d` (m, as held), δ = 4π n2 d/λ ([`two_beam_normal_reflectance`]).
+    pub fn reflectance(&self, n2_d: twofloat::TwoFloat, lambda_m: f64) -> f64 {
+        let (a1, a2) = (self.a1, self.a2);
+        let cycles = super::precise::div(n2_d, lambda_m.into());
+        let frac = cycles - cycles.hi().round();
+        let s = sin_cycles_dd(frac);
+        let sum = a1 + a2;
+        f64::from(sum * sum - a1 * a2 * s * s * 4.0)
+    }
 }

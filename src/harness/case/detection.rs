@@ -131,24 +131,40 @@ pub(crate) fn floors_of_traced(
         .collect();
     drop(traced);
     let analytic: Vec<f64> = sampled.iter().map(|&i| primary.analytic[i]).collect();
+    // Whether `fault` fails the gate at sampled point `k`: it deviates by more than the
+    // tolerance (a NaN deviation does not).
+    let caught_at =
+        |k: usize, fault: Fault, acc: &mut Accumulator, scratch: &mut Vec<Contribution>| {
+            let value: f64 = faultable[k]
+                .iter()
+                .map(|(w, rays)| w * faulted_intensity(rays, fault, acc, scratch))
+                .sum();
+            (value - analytic[k]).abs() / scale > tolerance
+        };
+    // The point that caught the last fault: it is tried first, alone (a fault a little smaller
+    // or larger is most often caught there again, and then the other points need no work).
+    // Whether a fault is caught does not depend on the order the points are tried in.
+    let last_catcher = std::cell::Cell::new(None::<usize>);
     // Whether `fault` fails the gate: some sampled point deviates by more than the tolerance
-    // (the largest deviation exceeds it; a NaN deviation counts as neither). The search stops
-    // at the first such point.
+    // (the largest deviation exceeds it). The search stops at the first such point.
     let caught_by = |fault: Fault| -> bool {
-        faultable
-            .par_iter()
-            .zip(&analytic)
+        if let Some(k) = last_catcher.get()
+            && caught_at(k, fault, &mut Accumulator::new(), &mut Vec::new())
+        {
+            return true;
+        }
+        let catcher = (0..faultable.len())
+            .into_par_iter()
             .map_init(
                 || (Accumulator::new(), Vec::new()),
-                |(acc, scratch), (per_lambda, a)| {
-                    let value: f64 = per_lambda
-                        .iter()
-                        .map(|(w, rays)| w * faulted_intensity(rays, fault, acc, scratch))
-                        .sum();
-                    (value - a).abs() / scale > tolerance
-                },
+                |(acc, scratch), k| caught_at(k, fault, acc, scratch).then_some(k),
             )
-            .any(|caught| caught)
+            .find_any(|caught| caught.is_some())
+            .flatten();
+        if catcher.is_some() {
+            last_catcher.set(catcher);
+        }
+        catcher.is_some()
     };
     let floor = |make: fn(f64) -> Fault| -> Floor {
         // Log-bisection for the smallest ε in [1e-16, 1] that is caught.

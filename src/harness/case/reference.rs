@@ -1066,17 +1066,32 @@ pub fn coherence(
             // never a difference of its faces' rounded points: the bottom face's f64 point of a
             // 2 nm plate 10 m from the origin is ~1e-15 m off, 1e-7 of R (fuzz
             // coherence_gaussian seed 7, test precision_classes::…thickness_as_held).
+            // The film as `airy_film` gives it at each wavelength: the faces' media and the
+            // thickness found once, the indices at each λ (the normal incidence and the plane
+            // wave were checked at the centre above).
+            let (top, bottom, media) = layer_media(built, plate)?;
+            let thickness_m = plate_thickness(&built.scene, top, bottom);
+            let index = |m: &Medium, lam: f64| m.index(lam).map_err(|e| e.to_string());
+            let mut two_beam: Option<analytic::coherence::TwoBeamNormal> = None;
             let mut sum = 0.0;
             for &(lam, w) in spectrum {
-                let (_, _, film) = beams(lam)?;
+                let n = [
+                    index(media[0], lam)?,
+                    index(media[1], lam)?,
+                    index(media[2], lam)?,
+                ];
                 // a1² + a2² + 2 a1 a2 cos δ as (a1 + a2)² − 4 a1 a2 sin²(δ/2): for a thin film
                 // a1 ≈ −a2 and the first form cancels to ~ε a1²/I (4e-13 of a 2 nm film's R).
                 // In double-double (analytic::coherence::two_beam_normal_reflectance): near a
                 // dark fringe the two terms cancel, and in f64 the closed form lost 1e-11.
-                let half = twofloat::TwoFloat::new_mul(film.n2, film.thickness_m);
-                sum += w * analytic::coherence::two_beam_normal_reflectance(
-                    film.n1, film.n2, film.n3, half, lam,
-                );
+                // The beams are formed again only where the indices change (dispersion).
+                let beams = match two_beam {
+                    Some(b) if b.indices == n => b,
+                    _ => analytic::coherence::TwoBeamNormal::new(n[0], n[1], n[2]),
+                };
+                two_beam = Some(beams);
+                let half = twofloat::TwoFloat::new_mul(n[1], thickness_m);
+                sum += w * beams.reflectance(half, lam);
             }
             Ok(i0 * sum)
         }
