@@ -5,7 +5,9 @@
 //! complex 3D fields into G coherence groups at P points (T/P per point, CSR layout); throughput
 //! in contributions per second. Variants: the pre-optimisation core (libm `sin_cos` of the full
 //! phase, linear group search) as a baseline; the per-point `Accumulator`; the batch API on one
-//! thread and on a 2-thread rayon pool; plain and compensated summation. Plus the phasor kernel
+//! thread and on a 2-thread rayon pool; the same on the column layout (`ContributionColumns`:
+//! ids, phases and fields as three slices, `columns_*`); plain and compensated summation. Plus
+//! a bare streaming read of the same bytes (the memory-bandwidth floor), and the phasor kernel
 //! alone against `f64::sin_cos` (scalar calls and the batch `phasors_from_cycles`).
 //!
 //! The machine is shared (2 cores): run it when nothing else is busy, or the 2-thread numbers
@@ -14,6 +16,9 @@
 //! Run: `CARGO_TARGET_DIR=/work/target-perf cargo bench -p fringe-benches --bench accumulate`
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
+use fringe::accumulate::columns::{
+    ContributionColumns, accumulate_columns, accumulate_columns_par,
+};
 use fringe::accumulate::{
     Accumulator, Contribution, Summation, accumulate_points, accumulate_points_par,
     phasor_from_cycles, phasors_from_cycles,
@@ -107,6 +112,7 @@ fn bench_accumulate(c: &mut Criterion) {
         ("T64k_P1k_G4", 1 << 16, 1 << 10, 4),
     ] {
         let (d, offsets) = data(t, p, g, 1);
+        let cols = ContributionColumns::from(&d[..]);
         let mut out = vec![0.0; p];
         let mut grp = c.benchmark_group(format!("accumulate/{label}"));
         grp.throughput(Throughput::Elements(t as u64));
@@ -148,7 +154,31 @@ fn bench_accumulate(c: &mut Criterion) {
                     black_box(&out);
                 })
             });
+            grp.bench_function(BenchmarkId::new("columns_1t", name), |b| {
+                b.iter(|| {
+                    accumulate_columns(black_box(&cols), &offsets, s, &mut out);
+                    black_box(&out);
+                })
+            });
+            grp.bench_function(BenchmarkId::new("columns_2t", name), |b| {
+                b.iter(|| {
+                    pool2.install(|| {
+                        accumulate_columns_par(black_box(&cols), &offsets, s, &mut out)
+                    });
+                    black_box(&out);
+                })
+            });
         }
+        // The memory floor: read the same 64 bytes per contribution and nothing else.
+        let words = accumulation_data::as_words(&d);
+        grp.bench_function("stream_read_1t", |b| {
+            b.iter(|| black_box(accumulation_data::stream_sum(black_box(words))))
+        });
+        grp.bench_function("stream_read_2t", |b| {
+            b.iter(|| {
+                pool2.install(|| black_box(accumulation_data::stream_sum_par(black_box(words))))
+            })
+        });
         grp.finish();
     }
 }

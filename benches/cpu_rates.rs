@@ -22,6 +22,9 @@ use accumulation_data::data;
 mod airy_plate;
 
 use airy_plate::airy_plate_of;
+use fringe::accumulate::columns::{
+    ContributionColumns, accumulate_columns, accumulate_columns_par,
+};
 use fringe::accumulate::fidelity::Fidelity;
 use fringe::accumulate::{Summation, accumulate_points, accumulate_points_par};
 use fringe::harness::analytic::plate::{Film, Pol};
@@ -70,6 +73,7 @@ fn accumulate() {
     let (t, p, g) = (1usize << 20, 1usize << 14, 4u64);
     // The data of `benches/accumulate.rs`'s T1M_P16k_G4.
     let (d, offsets) = data(t, p, g, 1);
+    let cols = ContributionColumns::from(&d[..]);
     let mut out = vec![0.0; p];
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(2)
@@ -87,7 +91,33 @@ fn accumulate() {
             pool.install(|| accumulate_points_par(black_box(&d), &offsets, s, &mut out));
             black_box(&out);
         });
+        measure(
+            &format!("accumulate T1M_P16k_G4 columns 1t {name}"),
+            20,
+            t,
+            || {
+                accumulate_columns(black_box(&cols), &offsets, s, &mut out);
+                black_box(&out);
+            },
+        );
+        measure(
+            &format!("accumulate T1M_P16k_G4 columns 2t {name}"),
+            20,
+            t,
+            || {
+                pool.install(|| accumulate_columns_par(black_box(&cols), &offsets, s, &mut out));
+                black_box(&out);
+            },
+        );
     }
+    // The memory floor: a bare streaming read of the same 64 MiB (8 words per contribution).
+    let words = accumulation_data::as_words(&d);
+    measure("accumulate T1M_P16k_G4 stream read 1t", 20, t, || {
+        black_box(accumulation_data::stream_sum(black_box(words)));
+    });
+    measure("accumulate T1M_P16k_G4 stream read 2t", 20, t, || {
+        black_box(pool.install(|| accumulation_data::stream_sum_par(black_box(words))));
+    });
 }
 
 /// Settings for the tail bound ε = 1e-12 of a plate of index `n` at `theta` (as the bench).

@@ -58,6 +58,7 @@
 //! 81 and 111 M/s from run to run), and a group's compensation terms start on their own cache
 //! line (84 M/s when they follow the sums directly).
 
+pub mod columns;
 pub mod fidelity;
 
 use crate::optics::ray::{Field3, INCOHERENT};
@@ -277,6 +278,9 @@ struct GroupTable {
     table: Vec<Slot>,
     /// 64 − log2(table.len()).
     shift: u32,
+    /// The ids of groups 0..4 (0 where there is no such group yet), for the one-compare
+    /// lookup of the column kernel (`columns.rs`).
+    first: [u64; 4],
 }
 
 const FIB: u64 = 0x9E37_79B9_7F4A_7C15;
@@ -289,6 +293,7 @@ impl GroupTable {
         self.ids.clear();
         self.slot_of.clear();
         self.sums.clear();
+        self.first = [0; 4];
     }
 
     #[inline(always)]
@@ -329,6 +334,9 @@ impl GroupTable {
             h = (h + 1) & mask;
         }
         self.table[h] = Slot { id, group: g };
+        if let Some(f) = self.first.get_mut(g) {
+            *f = id;
+        }
         self.ids.push(id);
         self.slot_of.push(h);
         self.sums.push(GroupSum::default());
@@ -412,6 +420,8 @@ pub struct Accumulator {
     view: OnceLock<Vec<(u64, Field3)>>,
     /// Scratch phasors of one block.
     phasors: Box<PhasorBlock>,
+    /// Scratch cosines and sines of the column kernel (`columns.rs`), allocated on first use.
+    trig: Option<Box<columns::TrigBlock>>,
 }
 
 /// Whether the CPU has AVX2 (cached by std after the first query).
@@ -593,7 +603,7 @@ pub fn intensity(contributions: &[Contribution]) -> f64 {
 // Batches
 // ---------------------------------------------------------------------------------------------
 
-fn check_layout(contributions: &[Contribution], offsets: &[usize], out: &[f64]) {
+fn check_offsets(contributions: usize, offsets: &[usize], out: &[f64]) {
     assert_eq!(
         offsets.len(),
         out.len() + 1,
@@ -602,7 +612,7 @@ fn check_layout(contributions: &[Contribution], offsets: &[usize], out: &[f64]) 
     assert!(
         offsets.first().is_none_or(|&o| o == 0)
             && offsets.windows(2).all(|w| w[0] <= w[1])
-            && offsets.last().is_none_or(|&o| o == contributions.len()),
+            && offsets.last().is_none_or(|&o| o == contributions),
         "offsets must start at 0, never decrease and end at contributions.len()"
     );
 }
@@ -617,7 +627,7 @@ pub fn accumulate_points(
     summation: Summation,
     out: &mut [f64],
 ) {
-    check_layout(contributions, offsets, out);
+    check_offsets(contributions.len(), offsets, out);
     let mut acc = Accumulator::with_summation(summation);
     for (k, o) in out.iter_mut().enumerate() {
         acc.clear();
@@ -634,7 +644,7 @@ pub fn accumulate_points_par(
     summation: Summation,
     out: &mut [f64],
 ) {
-    check_layout(contributions, offsets, out);
+    check_offsets(contributions.len(), offsets, out);
     // About 4096 contributions per task keeps the scheduling overhead below ~1%.
     let mean = contributions.len() / out.len().max(1);
     let min_len = (4096 / mean.max(1)).max(1);

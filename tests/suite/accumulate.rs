@@ -2,11 +2,15 @@
 //! actual, expected and error; each expected value says how it was derived, never from the code
 //! under test.
 
+use fringe::accumulate::columns::{
+    ContributionColumns, accumulate_columns, accumulate_columns_par,
+};
 use fringe::accumulate::{
     Accumulator, Contribution, Summation, accumulate_points, accumulate_points_par, intensity,
     offsets_from_counts, phasor_from_cycles, phasors_from_cycles,
 };
 use num_complex::Complex64;
+use proptest::prelude::*;
 use std::f64::consts::TAU;
 
 // ---------------------------------------------------------------------------------------------
@@ -760,4 +764,217 @@ fn many_groups_at_one_point() {
     acc.extend(&cs);
     assert_eq!(acc.groups().len(), 5000);
     assert_close("5000 groups", acc.intensity(), expected, 1e-12 * expected);
+}
+
+// ---------------------------------------------------------------------------------------------
+// columns (structure of arrays)
+// ---------------------------------------------------------------------------------------------
+
+/// The group fields and intensity of `cs` added one by one with [`Accumulator::add`].
+fn added_one_by_one(s: Summation, cs: &[Contribution]) -> (f64, Vec<(u64, [Complex64; 3])>) {
+    let mut acc = Accumulator::with_summation(s);
+    for x in cs {
+        acc.add(x);
+    }
+    (acc.intensity(), acc.groups().to_vec())
+}
+
+/// The same through [`Accumulator::extend_columns`].
+fn added_as_columns(s: Summation, cs: &[Contribution]) -> (f64, Vec<(u64, [Complex64; 3])>) {
+    let cols = ContributionColumns::from(cs);
+    let mut acc = Accumulator::with_summation(s);
+    acc.extend_columns(&cols.coherence_ids, &cols.phase_cycles, &cols.fields);
+    (acc.intensity(), acc.groups().to_vec())
+}
+
+/// Bit-for-bit equality of intensities and of every group's id and field components.
+fn assert_same_bits(
+    what: &str,
+    a: &(f64, Vec<(u64, [Complex64; 3])>),
+    b: &(f64, Vec<(u64, [Complex64; 3])>),
+) {
+    assert_eq!(
+        a.0.to_bits(),
+        b.0.to_bits(),
+        "{what}: intensity {:e} vs {:e}",
+        a.0,
+        b.0
+    );
+    assert_eq!(a.1.len(), b.1.len(), "{what}: number of groups");
+    for ((ia, ea), (ib, eb)) in a.1.iter().zip(&b.1) {
+        assert_eq!(ia, ib, "{what}: group order");
+        for k in 0..3 {
+            assert!(
+                ea[k].re.to_bits() == eb[k].re.to_bits()
+                    && ea[k].im.to_bits() == eb[k].im.to_bits(),
+                "{what}: group {ia} component {k}: {} vs {}",
+                ea[k],
+                eb[k]
+            );
+        }
+    }
+}
+
+#[test]
+fn columns_equal_the_rows_bit_for_bit() {
+    // Random points with id 0, sparse ids, 1…200 groups per point (the first four go through
+    // the kernel's 4-id compare, later ones through the hash table), both summations, serial
+    // and parallel; plus the independent libm reference.
+    let mut r = Rng(21);
+    for &(points, max_per, ids) in &[
+        (1000usize, 70usize, 4u64),
+        (300, 200, 9),
+        (40, 1500, 200),
+        (3, 0, 1),
+    ] {
+        let (d, offsets) = random_points(&mut r, points, max_per, ids);
+        let cols = ContributionColumns::from(&d[..]);
+        assert_eq!(cols.len(), d.len());
+        for s in [Summation::Compensated, Summation::Plain] {
+            let (mut rows, mut serial, mut par) =
+                (vec![0.0; points], vec![0.0; points], vec![0.0; points]);
+            accumulate_points(&d, &offsets, s, &mut rows);
+            accumulate_columns(&cols, &offsets, s, &mut serial);
+            accumulate_columns_par(&cols, &offsets, s, &mut par);
+            let mut worst_naive: f64 = 0.0;
+            for k in 0..points {
+                let cs = &d[offsets[k]..offsets[k + 1]];
+                let one = added_one_by_one(s, cs);
+                assert_same_bits(&format!("point {k} {s:?}"), &one, &added_as_columns(s, cs));
+                for (name, v) in [
+                    ("rows", rows[k]),
+                    ("columns", serial[k]),
+                    ("columns par", par[k]),
+                ] {
+                    assert_eq!(
+                        v.to_bits(),
+                        one.0.to_bits(),
+                        "point {k} {s:?}: {name} {v:e} vs add {:e}",
+                        one.0
+                    );
+                }
+                let naive = naive_intensity(cs);
+                let scale_k: f64 = cs.iter().map(|x| norm2(&x.field)).sum::<f64>().max(1e-300);
+                worst_naive = worst_naive.max((one.0 - naive).abs() / scale_k);
+            }
+            println!(
+                "{points} points, ≤ {max_per} contributions, {ids} ids, {s:?}: columns == columns par \
+                 == rows == add bit for bit; max |I − naive libm| / Σ|E|² = {worst_naive:.2e}"
+            );
+            assert!(worst_naive < 1e-13);
+        }
+    }
+}
+
+#[test]
+fn columns_take_the_wide_phase_path_like_the_rows() {
+    // Phases ≥ 2^48 cycles (and a NaN) send a whole block of the column kernel to
+    // `phasor_from_cycles`; the block's other contributions must not change.
+    let mut r = Rng(22);
+    let mut cs: Vec<Contribution> = (0..200)
+        .map(|j| c(1 + j % 6, 1e6 * r.sym(), r.field()))
+        .collect();
+    cs[70].phase_cycles = 2f64.powi(50) + 0.25;
+    cs[71].phase_cycles = -3e15;
+    for s in [Summation::Compensated, Summation::Plain] {
+        assert_same_bits(
+            &format!("wide phases {s:?}"),
+            &added_one_by_one(s, &cs),
+            &added_as_columns(s, &cs),
+        );
+        let mut nan = cs.clone();
+        nan[5].phase_cycles = f64::NAN;
+        let (a, b) = (added_one_by_one(s, &nan).0, added_as_columns(s, &nan).0);
+        println!("NaN phase {s:?}: add {a}, columns {b}");
+        assert!(a.is_nan() && b.is_nan());
+    }
+}
+
+#[test]
+fn columns_keep_the_compensated_guarantee() {
+    // The one-large-and-a-million-tiny-terms case of the rows, through the columns: E = 1 +
+    // 10^6·2^-54 exactly (integer phases, e^{i2πn} = 1 exactly), I = (1 + δ)².
+    let tiny = 2f64.powi(-54);
+    let n = 1_000_000;
+    let mut cs = vec![c(1, 0.0, ex(1.0))];
+    cs.extend((0..n).map(|j| c(1, (j % 1000) as f64 * 1e3, ex(tiny))));
+    let delta = n as f64 * tiny;
+    let expected = 1.0 + 2.0 * delta + delta * delta;
+    let cols = ContributionColumns::from(&cs[..]);
+    let mut out = [0.0];
+    accumulate_columns_par(&cols, &[0, cs.len()], Summation::Compensated, &mut out);
+    assert_close("columns compensated 1 + 10^6 tiny", out[0], expected, 4e-16);
+    accumulate_columns(&cols, &[0, cs.len()], Summation::Plain, &mut out);
+    println!("columns plain: {:.17e} (loses the tiny terms)", out[0]);
+    assert!((out[0] - expected).abs() > 4e-16);
+}
+
+#[test]
+fn columns_push_get_and_clear() {
+    let mut r = Rng(23);
+    let rows: Vec<Contribution> = (0..10).map(|j| c(j % 3, r.sym(), r.field())).collect();
+    let mut cols = ContributionColumns::with_capacity(4);
+    assert!(cols.is_empty());
+    for x in &rows {
+        cols.push(x);
+    }
+    assert_eq!(cols, ContributionColumns::from(&rows[..]));
+    assert_eq!(cols.len(), 10);
+    for (j, x) in rows.iter().enumerate() {
+        assert_eq!(cols.get(j), *x);
+    }
+    cols.clear();
+    assert!(cols.is_empty());
+}
+
+#[test]
+#[should_panic(expected = "equal lengths")]
+fn columns_of_unequal_lengths_are_rejected() {
+    let mut acc = Accumulator::new();
+    acc.extend_columns(&[1, 2], &[0.0], &[ex(1.0), ex(1.0)]);
+}
+
+#[test]
+#[should_panic(expected = "offsets")]
+fn columns_reject_bad_offsets() {
+    let cols = ContributionColumns::from(&[c(1, 0.0, ex(1.0))][..]);
+    let mut out = [0.0; 1];
+    accumulate_columns(&cols, &[0, 2], Summation::Plain, &mut out);
+}
+
+fn contribution() -> impl Strategy<Value = Contribution> {
+    let id = prop_oneof![Just(0u64), 1u64..6, any::<u64>()];
+    let phase = prop_oneof![-1e7..1e7f64, -1e16..1e16f64, -1.0..1.0f64];
+    let amp = -1e3..1e3f64;
+    (id, phase, proptest::array::uniform6(amp)).prop_map(|(id, p, f)| {
+        c(
+            id,
+            p,
+            [
+                Complex64::new(f[0], f[1]),
+                Complex64::new(f[2], f[3]),
+                Complex64::new(f[4], f[5]),
+            ],
+        )
+    })
+}
+
+proptest! {
+    #![proptest_config(ProptestConfig::with_cases(256))]
+
+    /// Columns added in two parts equal the rows added one by one (order kept), bit for bit.
+    #[test]
+    fn columns_split_anywhere_equal_the_rows(
+        cs in proptest::collection::vec(contribution(), 0..300),
+        cut in 0.0..1.0f64,
+        comp in any::<bool>(),
+    ) {
+        let s = if comp { Summation::Compensated } else { Summation::Plain };
+        let cols = ContributionColumns::from(&cs[..]);
+        let m = (cut * cs.len() as f64) as usize;
+        let mut acc = Accumulator::with_summation(s);
+        acc.extend_columns(&cols.coherence_ids[..m], &cols.phase_cycles[..m], &cols.fields[..m]);
+        acc.extend_columns(&cols.coherence_ids[m..], &cols.phase_cycles[m..], &cols.fields[m..]);
+        assert_same_bits("split columns", &added_one_by_one(s, &cs), &(acc.intensity(), acc.groups().to_vec()));
+    }
 }

@@ -1,0 +1,339 @@
+//! Contributions as columns (structure of arrays) and the batch accumulation over them
+//! (eqs. 5–6, docs/PHYSICS.md §3; the same sums as [`Accumulator::add`], bit for bit).
+//!
+//! [`ContributionColumns`] holds the three parts of a [`Contribution`] in three slices:
+//! coherence ids, phases (cycles) and fields. The bytes are the same as the row layout
+//! (8 + 8 + 48 per contribution), but the phasor loop reads the phases as one contiguous
+//! stream (4-lane vector loads instead of a strided gather from 64-byte rows) and writes the
+//! cosines and sines to two aligned scratch rows (no interleaving shuffles), and the group loop
+//! reads each field as one 48-byte vector.
+//!
+//! The AVX2 kernel finds the group of a contribution by one 4-lane compare against the ids of
+//! the first four groups of the point (the hash table of `mod.rs` only for a fifth and later
+//! group, or a new one), and forms `E·e^{i2πc}` and the TwoSum update with the operations and
+//! the operand order of `GroupTable::add_field` (no FMA, no reassociation), so every group sum,
+//! compensation term and intensity has the bits of [`Accumulator::add`] (checked in
+//! `tests/suite/accumulate.rs`). Without AVX2 the columns go through [`Accumulator::add_parts`].
+//!
+//! # Performance
+//!
+//! Measured 29 November 2026 on the project's 2-core AMD EPYC VM while it was loaded by parallel
+//! builds (load average ~19), so in CPU-seconds (`cargo bench -p fringe-benches --bench
+//! cpu_rates -- accumulate`, 1 M contributions, 16 k points, 4 groups): rows 47–49 M
+//! contributions per CPU-second compensated and 54 M plain, columns 66–87 M and 71–72 M; a bare
+//! streaming read of the same 64 MiB 114–123 M per CPU-second (the bytes alone cost about as
+//! much as the arithmetic). Instruction counts (callgrind, a stand-alone copy of both kernels):
+//! rows 107 / 90, columns 98 / 81 per contribution (compensated / plain).
+
+use super::{
+    Accumulator, BLOCK, Contribution, FAST_LIMIT, INCOHERENT, Summation, check_offsets,
+    phasor_from_cycles, phasor_quarters,
+};
+use crate::optics::ray::Field3;
+use rayon::prelude::*;
+
+/// Contributions of one or many points as three columns of equal length: `coherence_ids[j]`,
+/// `phase_cycles[j]` (path phase in cycles, Op/λ0) and `fields[j]` (complex 3D amplitude,
+/// Fresnel phases included, path phase excluded) are contribution `j` (see [`Contribution`]).
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct ContributionColumns {
+    /// Coherence ids; 0 adds intensity only.
+    pub coherence_ids: Vec<u64>,
+    /// Path phases in cycles.
+    pub phase_cycles: Vec<f64>,
+    /// Complex 3D field amplitudes.
+    pub fields: Vec<Field3>,
+}
+
+impl ContributionColumns {
+    /// Empty columns with room for `n` contributions.
+    pub fn with_capacity(n: usize) -> Self {
+        ContributionColumns {
+            coherence_ids: Vec::with_capacity(n),
+            phase_cycles: Vec::with_capacity(n),
+            fields: Vec::with_capacity(n),
+        }
+    }
+
+    /// Appends one contribution.
+    pub fn push(&mut self, c: &Contribution) {
+        self.coherence_ids.push(c.coherence_id);
+        self.phase_cycles.push(c.phase_cycles);
+        self.fields.push(c.field);
+    }
+
+    /// Number of contributions (panics if the columns have different lengths).
+    pub fn len(&self) -> usize {
+        self.check_lengths();
+        self.coherence_ids.len()
+    }
+
+    /// Whether there are no contributions.
+    pub fn is_empty(&self) -> bool {
+        self.len() == 0
+    }
+
+    /// Removes every contribution (keeps the allocations).
+    pub fn clear(&mut self) {
+        self.coherence_ids.clear();
+        self.phase_cycles.clear();
+        self.fields.clear();
+    }
+
+    /// Contribution `j` as a row.
+    pub fn get(&self, j: usize) -> Contribution {
+        Contribution {
+            coherence_id: self.coherence_ids[j],
+            phase_cycles: self.phase_cycles[j],
+            field: self.fields[j],
+        }
+    }
+
+    fn check_lengths(&self) {
+        assert!(
+            self.phase_cycles.len() == self.coherence_ids.len()
+                && self.fields.len() == self.coherence_ids.len(),
+            "columns must have equal lengths (ids {}, phases {}, fields {})",
+            self.coherence_ids.len(),
+            self.phase_cycles.len(),
+            self.fields.len()
+        );
+    }
+}
+
+impl From<&[Contribution]> for ContributionColumns {
+    fn from(rows: &[Contribution]) -> Self {
+        let mut cols = ContributionColumns::with_capacity(rows.len());
+        for c in rows {
+            cols.push(c);
+        }
+        cols
+    }
+}
+
+/// Cosines and sines of one block of phasors, each row on its own cache lines.
+#[derive(Clone, Debug)]
+#[repr(C, align(64))]
+pub(super) struct TrigBlock {
+    cos: [f64; BLOCK],
+    sin: [f64; BLOCK],
+}
+
+impl Default for TrigBlock {
+    fn default() -> Self {
+        TrigBlock {
+            cos: [0.0; BLOCK],
+            sin: [0.0; BLOCK],
+        }
+    }
+}
+
+impl Accumulator {
+    /// Adds contributions given as columns: `(coherence_ids[j], phase_cycles[j], fields[j])`
+    /// is added as by [`Accumulator::add_parts`], in order, with the same bits. The three
+    /// slices must have equal lengths (panics otherwise).
+    pub fn extend_columns(
+        &mut self,
+        coherence_ids: &[u64],
+        phase_cycles: &[f64],
+        fields: &[Field3],
+    ) {
+        assert!(
+            phase_cycles.len() == coherence_ids.len() && fields.len() == coherence_ids.len(),
+            "columns must have equal lengths (ids {}, phases {}, fields {})",
+            coherence_ids.len(),
+            phase_cycles.len(),
+            fields.len()
+        );
+        self.invalidate();
+        let comp = self.summation == Summation::Compensated;
+        #[cfg(target_arch = "x86_64")]
+        if super::avx2() {
+            // SAFETY: `columns_avx2` only requires AVX2, which the running CPU has (checked by
+            // `avx2()` just above). Measured reason: module docs (Performance) and the
+            // `columns_*` benches in benches/accumulate.rs.
+            unsafe {
+                if comp {
+                    self.columns_avx2::<true>(coherence_ids, phase_cycles, fields)
+                } else {
+                    self.columns_avx2::<false>(coherence_ids, phase_cycles, fields)
+                }
+            }
+            return;
+        }
+        for ((&id, &c), f) in coherence_ids.iter().zip(phase_cycles).zip(fields) {
+            if comp {
+                self.add_mode::<true>(id, c, f);
+            } else {
+                self.add_mode::<false>(id, c, f);
+            }
+        }
+    }
+
+    /// The column kernel: a block's phasors in one vector loop, then each contribution's
+    /// `E·e^{i2πc}` added to its group with 4-lane (x, y) and 2-lane (z) operations.
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2")]
+    fn columns_avx2<const COMP: bool>(&mut self, ids: &[u64], cycles: &[f64], fields: &[Field3]) {
+        use std::arch::x86_64::*;
+        let Accumulator {
+            table,
+            incoherent,
+            trig,
+            ..
+        } = self;
+        let trig = trig.get_or_insert_with(Box::default);
+        // Lanes (re, im, re, im): −sin in the re lanes, +sin in the im lanes.
+        let neg_re = _mm256_set_pd(0.0, -0.0, 0.0, -0.0);
+        let mut start = 0;
+        while start < ids.len() {
+            let len = (ids.len() - start).min(BLOCK);
+            let (idb, cyb, fb) = (
+                &ids[start..start + len],
+                &cycles[start..start + len],
+                &fields[start..start + len],
+            );
+            // Phasors of the block (`phasor_from_cycles`, bit for bit).
+            let mut all_fast = true;
+            for ((co, si), &c) in trig.cos[..len]
+                .iter_mut()
+                .zip(trig.sin[..len].iter_mut())
+                .zip(cyb)
+            {
+                let t = 4.0 * c;
+                let fast = t.abs() < FAST_LIMIT;
+                let p = phasor_quarters(if fast { t } else { 0.0 });
+                (*co, *si) = (p.re, p.im);
+                all_fast &= fast;
+            }
+            if !all_fast {
+                for ((co, si), &c) in trig.cos[..len]
+                    .iter_mut()
+                    .zip(trig.sin[..len].iter_mut())
+                    .zip(cyb)
+                {
+                    let p = phasor_from_cycles(c);
+                    (*co, *si) = (p.re, p.im);
+                }
+            }
+            // Grouped sums.
+            // SAFETY (loads below): `first` is a `[u64; 4]` (32 bytes, unaligned load).
+            let mut first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
+            for j in 0..len {
+                let (id, field) = (idb[j], &fb[j]);
+                if id == INCOHERENT {
+                    let e2 = field[0].norm_sqr() + field[1].norm_sqr() + field[2].norm_sqr();
+                    incoherent.add(e2, COMP);
+                    continue;
+                }
+                let hit = _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(
+                    first,
+                    _mm256_set1_epi64x(id as i64),
+                )));
+                let g = if hit != 0 {
+                    hit.trailing_zeros() as usize
+                } else {
+                    let g = table.group(id);
+                    // SAFETY: as above.
+                    first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
+                    g
+                };
+                let sum = &mut table.sums[g];
+                let f = field.as_ptr().cast::<f64>();
+                // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous
+                // f64 at `f`; `sum.s` and `sum.c` are `[f64; 6]` at 64-byte aligned offsets of
+                // the `#[repr(C, align(64))]` `GroupSum`, so elements 0..4 are 32-byte and 4..6
+                // 16-byte aligned (aligned loads and stores).
+                unsafe {
+                    let a = _mm256_loadu_pd(f); // x.re x.im y.re y.im
+                    let a2 = _mm_loadu_pd(f.add(4)); // z.re z.im
+                    let b = _mm256_permute_pd::<0b0101>(a); // x.im x.re y.im y.re
+                    let b2 = _mm_permute_pd::<0b01>(a2);
+                    let pc = _mm256_set1_pd(trig.cos[j]);
+                    let m = _mm256_xor_pd(_mm256_set1_pd(trig.sin[j]), neg_re);
+                    // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
+                    let p = _mm256_add_pd(_mm256_mul_pd(a, pc), _mm256_mul_pd(b, m));
+                    let p2 = _mm_add_pd(
+                        _mm_mul_pd(a2, _mm256_castpd256_pd128(pc)),
+                        _mm_mul_pd(b2, _mm256_castpd256_pd128(m)),
+                    );
+                    let sp = sum.s.as_mut_ptr();
+                    let s = _mm256_load_pd(sp);
+                    let s2 = _mm_load_pd(sp.add(4));
+                    if COMP {
+                        // TwoSum (`two_sum_add`): t = s + x, z = t − s,
+                        // c += (s − (t − z)) + (x − z), s = t.
+                        let cp = sum.c.as_mut_ptr();
+                        let t = _mm256_add_pd(s, p);
+                        let z = _mm256_sub_pd(t, s);
+                        let e = _mm256_add_pd(
+                            _mm256_sub_pd(s, _mm256_sub_pd(t, z)),
+                            _mm256_sub_pd(p, z),
+                        );
+                        _mm256_store_pd(cp, _mm256_add_pd(_mm256_load_pd(cp), e));
+                        _mm256_store_pd(sp, t);
+                        let t2 = _mm_add_pd(s2, p2);
+                        let z2 = _mm_sub_pd(t2, s2);
+                        let e2 = _mm_add_pd(_mm_sub_pd(s2, _mm_sub_pd(t2, z2)), _mm_sub_pd(p2, z2));
+                        _mm_store_pd(cp.add(4), _mm_add_pd(_mm_load_pd(cp.add(4)), e2));
+                        _mm_store_pd(sp.add(4), t2);
+                    } else {
+                        _mm256_store_pd(sp, _mm256_add_pd(s, p));
+                        _mm_store_pd(sp.add(4), _mm_add_pd(s2, p2));
+                    }
+                }
+            }
+            start += len;
+        }
+    }
+}
+
+/// Intensities of many points from columns (eq. 6 at each): point `k` owns contributions
+/// `offsets[k]..offsets[k + 1]` and its intensity goes to `out[k]`. The same layout rules and
+/// the same bits as [`super::accumulate_points`] on the rows (panics on bad offsets).
+pub fn accumulate_columns(
+    columns: &ContributionColumns,
+    offsets: &[usize],
+    summation: Summation,
+    out: &mut [f64],
+) {
+    check_offsets(columns.len(), offsets, out);
+    let mut acc = Accumulator::with_summation(summation);
+    for (k, o) in out.iter_mut().enumerate() {
+        *o = point_intensity(&mut acc, columns, offsets[k]..offsets[k + 1]);
+    }
+}
+
+/// [`accumulate_columns`] in parallel over points (rayon's current pool), bit for bit the same.
+pub fn accumulate_columns_par(
+    columns: &ContributionColumns,
+    offsets: &[usize],
+    summation: Summation,
+    out: &mut [f64],
+) {
+    check_offsets(columns.len(), offsets, out);
+    // About 4096 contributions per task keeps the scheduling overhead below ~1%.
+    let mean = columns.len() / out.len().max(1);
+    let min_len = (4096 / mean.max(1)).max(1);
+    out.par_iter_mut()
+        .enumerate()
+        .with_min_len(min_len)
+        .for_each_init(
+            || Accumulator::with_summation(summation),
+            |acc, (k, o)| *o = point_intensity(acc, columns, offsets[k]..offsets[k + 1]),
+        );
+}
+
+fn point_intensity(
+    acc: &mut Accumulator,
+    columns: &ContributionColumns,
+    r: std::ops::Range<usize>,
+) -> f64 {
+    acc.clear();
+    acc.extend_columns(
+        &columns.coherence_ids[r.clone()],
+        &columns.phase_cycles[r.clone()],
+        &columns.fields[r],
+    );
+    acc.intensity()
+}
