@@ -72,31 +72,34 @@ fn the_airy_closed_form_holds_at_grazing_near_brewster() {
     }
 }
 
-/// The tracer on 6567 and 2213. Traced 1 − R is 1.0428e-10 and 7.8213e-11: exactly (to 1e-6
-/// of it) 1 − |r12|² of the bare top face 0.001 → film (50 digits: 1.04284e-10 and
-/// 7.82132e-11), i.e. no order that crossed the film came back out.
+/// The tracer on 6567 and 2213. Before the carried invariant (`interaction::SnellInvariant`)
+/// traced 1 − R was 1.0428e-10 and 7.8213e-11: exactly (to 1e-6 of it) 1 − |r12|² of the bare
+/// top face 0.001 → film (50 digits: 1.04284e-10 and 7.82132e-11), i.e. no order that crossed
+/// the film came back out.
 ///
-/// Cause (the q² chain, not changed here; helper "plate" owns it): the tracer carries
-/// (n cos θ)² from medium to medium in double-double, q²_film = q²_amb + n_f² − n_a², and back
-/// out q²_amb' = q²_film + n_a² − n_f². Here q²_amb = (0.001 · 1.738e-14)² = 3.02e-34, below
-/// the double-double resolution of q²_film ≈ 4 (~5e-32), and q²_amb' comes back as −4.04e-33:
-/// the exit through the top face is judged total internal reflection, so every T0 R1 … T0
-/// order is missing (and would carry a wrong cos θ even where the sign came out right).
-///
-/// The same chain makes the p-polarized variant of 7304 (`fuzz_airy_s1_7304_p`, transmitted)
-/// 3.0e-11 off 50 digits after the enumeration fix: its internal reflection at the top face
-/// from inside is taken as total (|r21_p| = 1) where 50 digits give 1 − |r21_p| ≈ 5.2e-11.
+/// Cause: the tracer carried (n cos θ)² from medium to medium in double-double, q²_film =
+/// q²_amb + n_f² − n_a², and back out q²_amb' = q²_film + n_a² − n_f². Here q²_amb = (0.001 ·
+/// 1.738e-14)² = 3.02e-34, below the double-double resolution of q²_film ≈ 4 (~5e-32), and
+/// q²_amb' came back as −4.04e-33: the exit through the top face was judged total internal
+/// reflection, so every T0 R1 … T0 order was missing. Now every medium's square is formed from
+/// the ambient's directly, and the exit gets q²_amb back exactly.
 #[test]
-#[ignore = "open (issue #12): the double-double q² chain loses q²_amb = 3e-34 (helper plate)"]
 fn a_grazing_absentee_film_reflects_as_50_digits() {
-    for name in [
-        "fuzz_airy_s1_6567",
-        "fuzz_airy_s2_2213",
-        "fuzz_airy_s1_7304_p",
-    ] {
+    for name in ["fuzz_airy_s1_6567", "fuzz_airy_s2_2213"] {
         let (traced, _) = deviations(name);
         assert!(traced <= GATE, "{name}: traced {traced:e}");
     }
+}
+
+/// The p-polarized variant of 7304 (`fuzz_airy_s1_7304_p`, rotated, transmitted, T ≈ 7e-17):
+/// 3.0e-11 off 50 digits on the gate's scale with the chained q² (its internal reflection at
+/// the top face from inside taken as total, |r21_p| = 1, where 50 digits give 1 − 5.2e-11);
+/// 1.3e-11 with the carried invariant. Not yet diagnosed.
+#[test]
+#[ignore = "open (issue #12): fuzz_airy_s1_7304_p traced 1.3e-11 off 50 digits on the gate's scale"]
+fn a_rotated_grazing_film_transmits_p_as_50_digits() {
+    let (traced, _) = deviations("fuzz_airy_s1_7304_p");
+    assert!(traced <= GATE, "fuzz_airy_s1_7304_p: traced {traced:e}");
 }
 
 /// Seed 2 scene 7972, shrunk: n 2.6468 → 2.62 (10 mm) → 10, 786 nm, 81.7396° (cos θ2 = 0.0224,
