@@ -267,11 +267,18 @@ pub fn normal_wavevector_squares(
     (inv.q2_in(n1), inv.q2_in(n2))
 }
 
-/// The refracted direction η (d_i − (d_i·N_o) N_o) − cos θt N_o (Snell's law in vector form,
-/// η = n1/n2, N_o the normal facing the incident side, docs/PHYSICS.md §1) for a given
-/// cos θt ≥ 0, normalized. The tangential part is formed before it is scaled by η, so for
-/// η ≫ 1 (into a much thinner medium) the normal part is not the small difference of η-sized
-/// terms that η d_i + (η cos θi − cos θt) N_o rounds.
+/// The refracted direction sin θt t̂ − cos θt N_o for a given cos θt ≥ 0, normalized: Snell's
+/// law in vector form (docs/PHYSICS.md §1), t̂ the unit tangential part of d_i, d_i − (d_i·N_o)
+/// N_o, N_o the normal facing the incident side, and sin θt = √((1 − cos θt)(1 + cos θt)) from
+/// the same cos θt (Snell's invariant) where θt > 45° (η·|t|, η = n1/n2, nearer the normal).
+///
+/// In a rotated frame the f64 tangential part d_i − (d_i·N_o) N_o keeps a normal component of
+/// ~1e-16 absolute (the rounding of (d_i·N_o) N_o), i.e. ~1e-16/sin θi of its length; scaled
+/// up to the exit's sin θt it was ~1e-16·sin θt/sin θi, which on leaving a dense film into a
+/// thin ambient at grazing (film n = 2, ambient n = 0.001, sin θi = 5e-4, cos θt = 1.7e-14)
+/// outweighed cos θt itself (−5.6e-14 against 1.7e-14): the exit direction pointed back into
+/// the film and every order through it missed its far-field direction (`fringe fuzz --family
+/// airy --seed 1`, scene 6567 rotated). The tangential part is re-orthogonalized once more.
 pub(crate) fn snell_direction(
     d_i: DVec3,
     normal: DVec3,
@@ -283,8 +290,23 @@ pub(crate) fn snell_direction(
     } else {
         -normal
     };
+    // Twice (Gram–Schmidt re-orthogonalization): once, its normal part is left at the
+    // ~1e-16 absolute rounding of (d_i·N_o) N_o, which near the normal is ~1e-16/sin θi of
+    // the tangential part; the second pass leaves ~1e-16 of the tangential part itself.
     let tangential = d_i - d_i.dot(n_o) * n_o;
-    ((n1 / n2) * tangential - cos_t * n_o).normalize()
+    let tangential = tangential - tangential.dot(n_o) * n_o;
+    let length = tangential.length();
+    if length == 0.0 || !length.is_finite() {
+        // Normal incidence: no tangential direction (and η·0 = 0 as before).
+        return ((n1 / n2) * tangential - cos_t * n_o).normalize();
+    }
+    // Near the normal (cos θt > 1/√2) sin θt is η·|t| itself: √(1 − cos²θt) would lose it.
+    let sin_t = if cos_t < std::f64::consts::FRAC_1_SQRT_2 {
+        ((1.0 - cos_t) * (1.0 + cos_t)).sqrt()
+    } else {
+        (n1 / n2) * length
+    };
+    ((sin_t / length) * tangential - cos_t * n_o).normalize()
 }
 
 impl Encounter {
