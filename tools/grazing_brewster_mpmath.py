@@ -2,7 +2,8 @@
 """50-digit R or T of the grazing films near Brewster's angle and the thick plate near the
 critical angle that `fringe fuzz --family airy` failed at 3eb0153 (issue #12;
 tests/suite/truth_grazing_brewster.rs): seed 1 scenes 6567 and 7304 (with its unrotated and
-p-polarized variants), seed 2 scenes 2213 and 7972, shrunk into tests/fuzz_found/.
+p-polarized variants), seed 2 scenes 2213 and 7972, shrunk into tests/fuzz_found/; and 6567
+and 2213 shrunk again after the carried Snell invariant (they keep their rotation: `_rotated`).
 
 Each case file is evaluated from its own binary64 numbers by
 tools/precision_classes_mpmath.py `airy_case` (the direction built in binary64 as
@@ -27,6 +28,8 @@ FOUND = os.path.join(HERE, "..", "tests", "fuzz_found")
 CASES = [
     "fuzz_airy_s1_6567",
     "fuzz_airy_s2_2213",
+    "fuzz_airy_s1_6567_rotated",
+    "fuzz_airy_s2_2213_rotated",
     "fuzz_airy_s1_7304",
     "fuzz_airy_s1_7304_p",
     "fuzz_airy_s1_7304_unrotated",
