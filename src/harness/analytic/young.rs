@@ -20,7 +20,7 @@ use twofloat::TwoFloat;
 /// fraction of a cycle before rounding ([`super::precise`]), so the closed form's own phase
 /// error is ~1e-16 rad whatever the distances (the tracer forms r1 − r2 from f64 lengths).
 /// The intensity is evaluated as `2(1 + cos δ) − 2(1 − f)(1 − cos α) cos δ` with both
-/// differences formed without cancellation ([`Terms`]): `2 + …` in f64 rounds by 2.2e-16
+/// differences formed without cancellation (`Terms`): `2 + …` in f64 rounds by 2.2e-16
 /// absolute, which at a dark fringe of I = 7.4e-7 was 3e-10 of the profile (`fringe fuzz
 /// --family young_exact --seed 2`, scene 2559, `tests/suite/truth_found_edges.rs`), while the
 /// tracer's |E1 + E2|² keeps its relative digits there.
@@ -41,7 +41,7 @@ pub fn exact_line_sources(
 /// 1/2, docs/PHYSICS.md §3): the coherent term is tr[(I − k1k1ᵀ)(I − k2k2ᵀ)]/2 = (1 + cos²α)/2
 /// of the parallel-field one, α the angle between the rays (both perpendicular to the axis),
 /// so `I = 2 + (1 + cos²α) cos δ` (the two-channel model's `1 + cos α` differs by α²/2),
-/// evaluated as `2(1 + cos δ) − sin²α cos δ` ([`Terms`]).
+/// evaluated as `2(1 + cos δ) − sin²α cos δ` (`Terms`).
 pub fn exact_line_sources_basis_free(
     s1: DVec3,
     s2: DVec3,
