@@ -27,10 +27,9 @@
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, INCOHERENT, Summation, check_offsets,
-    phasor_from_cycles, phasor_quarters,
+    par_over_points, phasor_from_cycles, phasor_quarters,
 };
 use crate::optics::ray::Field3;
-use rayon::prelude::*;
 
 /// Contributions of one or many points as three columns of equal length: `coherence_ids[j]`,
 /// `phase_cycles[j]` (path phase in cycles, Op/λ0) and `fields[j]` (complex 3D amplitude,
@@ -312,16 +311,9 @@ pub fn accumulate_columns_par(
     out: &mut [f64],
 ) {
     check_offsets(columns.len(), offsets, out);
-    // About 4096 contributions per task keeps the scheduling overhead below ~1%.
-    let mean = columns.len() / out.len().max(1);
-    let min_len = (4096 / mean.max(1)).max(1);
-    out.par_iter_mut()
-        .enumerate()
-        .with_min_len(min_len)
-        .for_each_init(
-            || Accumulator::with_summation(summation),
-            |acc, (k, o)| *o = point_intensity(acc, columns, offsets[k]..offsets[k + 1]),
-        );
+    par_over_points(columns.len(), summation, out, |acc, k| {
+        point_intensity(acc, columns, offsets[k]..offsets[k + 1])
+    });
 }
 
 fn point_intensity(

@@ -645,19 +645,31 @@ pub fn accumulate_points_par(
     out: &mut [f64],
 ) {
     check_offsets(contributions.len(), offsets, out);
+    par_over_points(contributions.len(), summation, out, |acc, k| {
+        acc.clear();
+        acc.extend(&contributions[offsets[k]..offsets[k + 1]]);
+        acc.intensity()
+    });
+}
+
+/// `out[k] = point(acc, k)` for every point k, in parallel over points (rayon's current pool),
+/// each point by one thread with an accumulator of `summation` reused across a task's points:
+/// so the intensities are bit for bit those of a serial loop. `total` contributions in all.
+pub(crate) fn par_over_points(
+    total: usize,
+    summation: Summation,
+    out: &mut [f64],
+    point: impl Fn(&mut Accumulator, usize) -> f64 + Sync + Send,
+) {
     // About 4096 contributions per task keeps the scheduling overhead below ~1%.
-    let mean = contributions.len() / out.len().max(1);
+    let mean = total / out.len().max(1);
     let min_len = (4096 / mean.max(1)).max(1);
     out.par_iter_mut()
         .enumerate()
         .with_min_len(min_len)
         .for_each_init(
             || Accumulator::with_summation(summation),
-            |acc, (k, o)| {
-                acc.clear();
-                acc.extend(&contributions[offsets[k]..offsets[k + 1]]);
-                *o = acc.intensity();
-            },
+            |acc, (k, o)| *o = point(acc, k),
         );
 }
 

@@ -297,12 +297,7 @@ fn a_line_source_scene_one_rounding_away_moves_tracer_and_closed_form_alike() {
         ("fuzz_young_exact_s1_5173", 1e-10),
         ("fuzz_young_exact_s1_9633", 1e-11),
     ] {
-        let (held, moved) = (&truth[name], &truth[&format!("{name}_ulp")]);
-        let scale = held.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-        let gap = held
-            .iter()
-            .zip(moved)
-            .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / scale));
+        let gap = ulp_gap(&truth, name);
         println!("{name}: one ulp of every coordinate moves I by {gap:e} of the profile");
         assert!(gap >= at_least, "{name}: gap {gap:e}");
     }
@@ -334,12 +329,7 @@ fn the_line_source_band_catches_errors_a_coordinate_term_would_hide() {
         .unwrap()
         .min(1e-9);
     let truth = support::mpmath_profiles(HELD);
-    let (held, moved) = (&truth[name], &truth[&format!("{name}_ulp")]);
-    let scale = held.iter().fold(0.0f64, |m, x| m.max(x.abs()));
-    let gap = held
-        .iter()
-        .zip(moved)
-        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / scale));
+    let gap = ulp_gap(&truth, name);
     let floors = |tolerance: f64| {
         let mut judged = value.clone();
         judged["references"][0]["tolerances"]["vector"] = serde_json::json!(tolerance);
@@ -370,4 +360,14 @@ fn the_line_source_band_catches_errors_a_coordinate_term_would_hide() {
         10.0 * phase <= phase_widened,
         "{phase:e} vs {phase_widened:e}"
     );
+}
+
+/// How far one ulp of every coordinate moves the 50-digit profile of `name` (its `_ulp` twin),
+/// relative to the profile's largest value.
+fn ulp_gap(truth: &std::collections::BTreeMap<String, Vec<f64>>, name: &str) -> f64 {
+    let (held, moved) = (&truth[name], &truth[&format!("{name}_ulp")]);
+    let scale = held.iter().fold(0.0f64, |m, x| m.max(x.abs()));
+    held.iter()
+        .zip(moved)
+        .fold(0.0f64, |m, (a, b)| m.max((a - b).abs() / scale))
 }
