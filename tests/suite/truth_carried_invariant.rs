@@ -19,13 +19,12 @@
 //! `tests/data/carried_invariant_mpmath.csv`) for the two closed scenes as written into
 //! `tests/fuzz_found/`; never the tracer's own output.
 
-use fringe::harness::fuzz::{self, Family, Verdict};
+use fringe::harness::fuzz::{self, Family};
 use fringe::optics::double_double::two_prod;
 use fringe::optics::interaction::{CoefficientModel, InterfaceHit, SurfaceOptics, interact};
 use fringe::optics::material::CoherenceRules;
 use fringe::optics::ray::Ray;
 use glam::DVec3;
-use std::path::PathBuf;
 
 /// A face at height `z` with unit normal +z, `above` over it and `below` under it.
 fn face(surface: usize, point: DVec3, above: f64, below: f64) -> InterfaceHit {
@@ -99,17 +98,9 @@ const TAIL_REFUSED: [(u64, usize); 2] = [(1, 8311), (2, 3914)];
 /// and passes: none is refused, none fails.
 #[test]
 fn the_formerly_refused_airy_tails_are_closed_and_pass() {
-    let mut bad = Vec::new();
-    for (seed, i) in TAIL_REFUSED {
-        let sc = fuzz::scene(Family::Airy, seed, i, None);
-        let case = sc.case.expect("the generator builds it");
-        let v = fuzz::judge(&case, &PathBuf::from(format!("fuzz_airy_s{seed}_{i}.json")));
-        println!("airy seed {seed} scene {i}: {v:?}");
-        if !matches!(v, Verdict::Pass { .. }) {
-            bad.push(format!("seed {seed} scene {i}: {v:?}"));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_drawn_scenes_pass(
+        TAIL_REFUSED.map(|(seed, index)| (Family::Airy, seed, index)),
+    );
 }
 
 /// The two scenes as drawn (`tests/fuzz_found/fuzz_airy_s{1,2}_*.json`, written by the

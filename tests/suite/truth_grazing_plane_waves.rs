@@ -12,7 +12,7 @@
 //! own precision is shown against 50 digits in `closed_form_precision` and `truth_airy_tracer`),
 //! never with the tracer's own output.
 
-use fringe::harness::fuzz::{self, Family, Verdict};
+use fringe::harness::fuzz::Family;
 use std::path::Path;
 
 /// Scenes of `fringe fuzz --count 10000 --seed 1` refused as "no light reaches any probe
@@ -29,23 +29,7 @@ const SCENES: [(Family, usize); 3] = [
 /// Those scenes are judged, not refused, and pass the gate against their closed forms.
 #[test]
 fn grazing_plane_waves_reach_the_probe_and_pass() {
-    let mut bad = Vec::new();
-    for (family, index) in SCENES {
-        let scene = fuzz::scene(family, 1, index, None);
-        let case = scene.case.expect("a generated case");
-        let verdict = fuzz::judge(
-            &case,
-            Path::new(&format!("grazing_{}_{index}.json", family.name())),
-        );
-        if !matches!(verdict, Verdict::Pass { .. }) {
-            bad.push(format!(
-                "{} {index} {:?}: {verdict:?}",
-                family.name(),
-                scene.tags
-            ));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_drawn_scenes_pass(SCENES.map(|(family, index)| (family, 1, index)));
 }
 
 /// Scenes where an order leaving the film on the other side was taken for the observed wave
@@ -62,19 +46,9 @@ const OTHER_SIDE_SCENES: [(u64, usize); 4] = [(1, 7210), (2, 6263), (2, 8945), (
 
 #[test]
 fn orders_leaving_on_the_other_side_are_not_recorded() {
-    let mut bad = Vec::new();
-    for (seed, index) in OTHER_SIDE_SCENES {
-        let scene = fuzz::scene(Family::Airy, seed, index, None);
-        let case = scene.case.expect("a generated case");
-        let verdict = fuzz::judge(&case, Path::new(&format!("other_side_{seed}_{index}.json")));
-        if !matches!(verdict, Verdict::Pass { .. }) {
-            bad.push(format!(
-                "seed {seed} scene {index} {:?}: {verdict:?}",
-                scene.tags
-            ));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_drawn_scenes_pass(
+        OTHER_SIDE_SCENES.map(|(seed, index)| (Family::Airy, seed, index)),
+    );
 }
 
 /// At the point of the shrunk scene 8945 (tests/fuzz_found/fuzz_airy_s2_8945.json) where the

@@ -245,19 +245,7 @@ fn the_landed_scenes_trace_to_50_digits() {
 /// at their derived tolerance: none is refused, none fails.
 #[test]
 fn every_formerly_unlanded_scene_passes_the_fuzz_gate() {
-    let mut bad = Vec::new();
-    for &i in &REFUSED {
-        let sc = fuzz::scene(Family::TwoBeamPlate, 1, i, None);
-        let case = sc.case.expect("the generator builds it");
-        let v = fuzz::judge(
-            &case,
-            &PathBuf::from(format!("fuzz_two_beam_plate_s1_{i}.json")),
-        );
-        if !matches!(v, Verdict::Pass { .. }) {
-            bad.push(format!("scene {i}: {v:?}"));
-        }
-    }
-    assert!(bad.is_empty(), "{bad:#?}");
+    crate::support::assert_drawn_scenes_pass(REFUSED.iter().map(|&i| (Family::TwoBeamPlate, 1, i)));
 }
 
 /// Scenes 5672, 6363 and 6541 of `fringe fuzz --family two_beam_plate --seed 1` (micrometre

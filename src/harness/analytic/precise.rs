@@ -55,10 +55,14 @@ pub fn distance(a: DVec3, b: DVec3) -> TwoFloat {
 /// `lambda_m` (docs/PHYSICS.md §1): the whole cycles are removed in double-double, so the rounded
 /// fraction keeps its digits for paths of any length.
 pub fn path_phasor(s_m: TwoFloat, lambda_m: f64) -> Complex64 {
+    crate::accumulate::phasor_from_cycles(f64::from(cycle_fraction(s_m, lambda_m)))
+}
+
+/// The cycles s/λ of an optical path `s_m` (m) at vacuum wavelength `lambda_m` less the nearest
+/// whole number, in double-double (in [−1/2, 1/2]).
+fn cycle_fraction(s_m: TwoFloat, lambda_m: f64) -> TwoFloat {
     let cycles = s_m / lambda_m;
-    let whole = cycles.hi().round();
-    let frac = f64::from(cycles - whole);
-    crate::accumulate::phasor_from_cycles(frac)
+    cycles - cycles.hi().round()
 }
 
 /// The distance q ∈ [0, 1/2] of `s_m`/`lambda_m` (cycles of an optical path `s_m`, m, at vacuum
@@ -66,8 +70,7 @@ pub fn path_phasor(s_m: TwoFloat, lambda_m: f64) -> Complex64 {
 /// once: a two-beam dark fringe is q = 0, and 1 + cos(2π s/λ) = 2 sin²(π q) keeps its relative
 /// digits there, where 1 + cos of a rounded phase keeps only 2.2e-16 absolute.
 pub fn half_cycle_distance(s_m: TwoFloat, lambda_m: f64) -> f64 {
-    let cycles = s_m / lambda_m;
-    let frac = cycles - cycles.hi().round();
+    let frac = cycle_fraction(s_m, lambda_m);
     let frac = if frac.hi() < 0.0 { -frac } else { frac };
     f64::from(TwoFloat::from(0.5) - frac).clamp(0.0, 0.5)
 }

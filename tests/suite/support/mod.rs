@@ -4,6 +4,7 @@ pub mod airy_plate;
 pub mod library;
 pub mod schema;
 
+use fringe::harness::fuzz::{self, Family, Verdict};
 use std::collections::BTreeMap;
 use std::path::{Path, PathBuf};
 
@@ -122,6 +123,23 @@ pub fn assert_traced_within(csv: &str, profiles: usize, tol: f64) {
         println!("{name}: traced vs {csv} {err:e}");
         if err.is_nan() || err > tol {
             bad.push(format!("{name}: err {err:e}"));
+        }
+    }
+    assert!(bad.is_empty(), "{bad:#?}");
+}
+
+/// Asserts that every drawn scene (family, seed, index) of `fringe fuzz` passes the fuzz gate
+/// at its derived tolerance, as `fringe fuzz` judges it: none is refused, none fails.
+pub fn assert_drawn_scenes_pass(scenes: impl IntoIterator<Item = (Family, u64, usize)>) {
+    let mut bad = Vec::new();
+    for (family, seed, index) in scenes {
+        let scene = fuzz::scene(family, seed, index, None);
+        let case = scene.case.expect("the generator builds it");
+        let name = format!("fuzz_{}_s{seed}_{index}.json", family.name());
+        let verdict = fuzz::judge(&case, Path::new(&name));
+        println!("{name}: {verdict:?}");
+        if !matches!(verdict, Verdict::Pass { .. }) {
+            bad.push(format!("{name} {:?}: {verdict:?}", scene.tags));
         }
     }
     assert!(bad.is_empty(), "{bad:#?}");
