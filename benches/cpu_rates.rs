@@ -32,7 +32,7 @@ use fringe::optics::material::{Dispersion, Medium};
 use fringe::scene::Scene;
 use fringe::trace::beats::{Beats, vector_rays};
 use fringe::trace::path::{EnumerationLimits, Target};
-use fringe::trace::{self, TraceSettings, round_trips};
+use fringe::trace::{self, TraceSettings, dispersive_sweep, round_trips};
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Instant;
@@ -250,8 +250,9 @@ fn spectrum() {
     spectrum_dispersive();
 }
 
-/// N-BK7 (Sellmeier): a trace at every wavelength, by the general walk and by round trips
-/// (`cpu_rates spectrum` runs it last; `cpu_rates bk7` alone).
+/// N-BK7 (Sellmeier): a trace at every wavelength by the general walk; by round trips traced
+/// once and swept over the wavelengths (`trace::dispersive_sweep`), on one thread and 16
+/// spectra on two (`cpu_rates spectrum` runs it last; `cpu_rates bk7` alone).
 fn spectrum_dispersive() {
     const D: f64 = 3.217e-6;
     let theta = 35f64.to_radians();
@@ -280,7 +281,9 @@ fn spectrum_dispersive() {
             black_box(&out);
         },
     );
-    measure("airy/spectrum bk7 round_trips", 30, lambdas.len(), || {
+    // Traced once by round trips at the middle wavelength, then a sweep of the indices,
+    // Fresnel coefficients and round trip (`trace::dispersive_sweep`).
+    measure("airy/spectrum bk7 round_trips", 2000, lambdas.len(), || {
         let route = round_trips::spectrum(
             &scene_bk7,
             &probes,
@@ -294,6 +297,56 @@ fn spectrum_dispersive() {
         assert_eq!(route, round_trips::Route::RoundTrips);
         black_box(&out);
     });
+    // The sweep alone (set up once): the per-wavelength cost.
+    let optics = scene_bk7.optics(mid).expect("indices");
+    let sweep = dispersive_sweep::Sweep::new(&scene_bk7, &optics, &probes, &target_bk7, &st_bk7)
+        .expect("the sweep holds");
+    measure("airy/spectrum bk7 sweep only", 2000, lambdas.len(), || {
+        for (&l, o) in lambdas.iter().zip(out.iter_mut()) {
+            *o = sweep
+                .intensity(&scene_bk7, l)
+                .expect("indices")
+                .expect("holds");
+        }
+        black_box(&out);
+    });
+    // 16 N-BK7 spectra (angles 20°–50°) on two threads, one spectrum per task.
+    let spectra: Vec<(Scene, Target, TraceSettings)> = (0..16)
+        .map(|k| {
+            let th = (20.0 + 2.0 * k as f64).to_radians();
+            let (s, t) = airy_plate_of(th, bk7.clone(), D);
+            (
+                s,
+                t,
+                spectrum_settings(th, bk7.index(mid).expect("index"), D, mid),
+            )
+        })
+        .collect();
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("rayon pool");
+    measure(
+        "airy/spectrum bk7 16 spectra 2t round_trips",
+        200,
+        16 * lambdas.len(),
+        || {
+            use rayon::prelude::*;
+            black_box(pool.install(|| {
+                spectra
+                    .par_iter()
+                    .map_init(
+                        || (Beats::default(), vec![0.0; lambdas.len()]),
+                        |(beats, out), (s, t, st)| {
+                            round_trips::spectrum(s, &probes, t, st, &lambdas, beats, out)
+                                .expect("indices");
+                            out[0]
+                        },
+                    )
+                    .sum::<f64>()
+            }));
+        },
+    );
 }
 
 fn main() {

@@ -8,6 +8,7 @@
 //! other source and target solves each sequence on its own.
 
 pub mod beats;
+pub mod dispersive_sweep;
 pub mod forward;
 pub(crate) mod parallel_phase;
 pub mod path;

@@ -25,10 +25,13 @@
 //! `vector` model.
 //!
 //! [`spectrum`] gives the intensity spectrum of one far-field direction: for non-dispersive
-//! media one trace and [`Beats::intensities`]; for dispersive media (Sellmeier, Cauchy, …) a
-//! trace at every wavelength, each by round trips where they apply.
+//! media one trace and [`Beats::intensities`]; for dispersive media (Sellmeier, Cauchy, …) one
+//! trace by round trips and a [`Sweep`] of the indices, coefficients and round trip over the
+//! wavelengths where its structure holds ([`super::dispersive_sweep`]), a trace at every other
+//! wavelength, each by round trips where they apply.
 
 use super::beats::{Beats, SpectralContribution};
+use super::dispersive_sweep::Sweep;
 use super::tail::{film_thickness, last_two_reflections, one_film};
 use super::{Arrival, TraceSettings, arrivals_with, phase_cycles, plan};
 use crate::accumulate::Accumulator;
@@ -123,7 +126,7 @@ pub fn intensity(rays: &[FarFieldRay], lambda_m: f64, acc: &mut Accumulator) -> 
 }
 
 /// The normal of the two faces if the scene and target admit round trips (module docs).
-fn check_scene(scene: &Scene, target: &Target) -> Result<DVec3, NotApplicable> {
+pub(super) fn check_scene(scene: &Scene, target: &Target) -> Result<DVec3, NotApplicable> {
     if !matches!(target, Target::Direction { .. }) {
         return refuse("round trips are traced only into the far field (the target is a point)");
     }
@@ -145,9 +148,9 @@ fn check_scene(scene: &Scene, target: &Target) -> Result<DVec3, NotApplicable> {
 }
 
 /// One source's deepest traced order (per channel) and the round trip that makes the next one.
-struct Extension {
+pub(super) struct Extension {
     /// The deepest order's rays, one per channel (indices into the traced arrivals).
-    deepest: Vec<usize>,
+    pub(super) deepest: Vec<usize>,
     /// Per channel A_σ (σ = s, p).
     a: Vec<[Complex64; 2]>,
     /// s and p = d × s of the exit direction.
@@ -156,12 +159,12 @@ struct Extension {
     /// ΔS = 2 d n cos θ (m).
     round_trip_path: DoubleDouble,
     /// How many further orders the limits allow.
-    further: usize,
+    pub(super) further: usize,
 }
 
 /// The extension of one source's traced arrivals `own` (indices into `arrivals`), or `None`
 /// when the limits allow no further order.
-fn extension(
+pub(super) fn extension(
     scene: &Scene,
     optics: &SceneOptics,
     normal: DVec3,
@@ -269,7 +272,7 @@ fn extension(
 
 /// The short trace: the general far-field walk with at most
 /// [`TRACED_INTERNAL_REFLECTIONS`] internal reflections (the `vector` model only).
-fn traced_orders(
+pub(super) fn traced_orders(
     scene: &Scene,
     optics: &SceneOptics,
     probe_targets: &[DVec3],
@@ -404,9 +407,13 @@ pub fn rays_or_walk(
 /// The traced intensity |E|² (`vector`) toward `target` at every vacuum wavelength of
 /// `lambdas_m`, into `out`. Non-dispersive scenes ([`non_dispersive`]) are traced once at the
 /// middle wavelength and evaluated at all wavelengths by [`Beats::intensities`] (`beats` is
-/// scratch space); dispersive ones are traced at every wavelength and summed with compensation
-/// ([`intensity`]). Each trace is by round trips where they apply ([`rays_or_walk`]); the
-/// route of the last trace is returned.
+/// scratch space). Dispersive ones are traced once by round trips at the middle wavelength
+/// and evaluated at every wavelength where that structure holds by a [`Sweep`] (indices,
+/// Fresnel coefficients and round trip formed again, no trace); at any other wavelength they
+/// are traced ([`rays_or_walk`]) and summed with compensation ([`intensity`]), and where such
+/// a trace goes by round trips after one by the general walk (or at the first one, if the
+/// middle wavelength refused), the sweep is set up again there. The route of the last
+/// wavelength is returned (a sweep's wavelengths count as [`Route::RoundTrips`]).
 pub fn spectrum(
     scene: &Scene,
     probe_targets: &[DVec3],
@@ -427,12 +434,37 @@ pub fn spectrum(
         beats.intensities(lambdas_m, out);
         return Ok(route);
     }
+    let mut sweep = Sweep::new(
+        scene,
+        &scene.optics(lambdas_m[lambdas_m.len() / 2])?,
+        probe_targets,
+        target,
+        settings,
+    )
+    .ok();
+    // Set the sweep up again at the next wavelength traced by round trips.
+    let mut set_up_again = sweep.is_none();
     let mut acc = Accumulator::new();
     let mut route = Route::RoundTrips;
     for (&l, o) in lambdas_m.iter().zip(out.iter_mut()) {
+        if let Some(sw) = &sweep
+            && let Some(i) = sw.intensity(scene, l)?
+        {
+            *o = i;
+            route = Route::RoundTrips;
+            continue;
+        }
         let optics = scene.optics(l)?;
         let (r, rt) = rays_or_walk(scene, &optics, probe_targets, target, settings);
         *o = intensity(&r, l, &mut acc);
+        if rt == Route::RoundTrips {
+            if set_up_again {
+                sweep = Sweep::new(scene, &optics, probe_targets, target, settings).ok();
+                set_up_again = false;
+            }
+        } else {
+            set_up_again = true;
+        }
         route = rt;
     }
     Ok(route)

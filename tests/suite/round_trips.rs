@@ -447,3 +447,146 @@ fn general_walk_runs_where_round_trips_do_not_apply() {
         }
     }
 }
+
+/// The spectrum of a dispersive film by a sweep (`trace::dispersive_sweep::Sweep`: the orders'
+/// structure traced once at the middle wavelength; per wavelength only the indices, the Fresnel
+/// coefficients and the round trip) against a trace at every wavelength, both by round trips
+/// (`round_trips::rays_or_walk`) and by the general walk (`trace::arrivals`), to 1e-14 at every
+/// wavelength: free-standing N-BK7 plates, N-BK7 films on a substrate and constant films on
+/// N-BK7, reflected and transmitted into constant media, s, p and unpolarized, 0.5°, 35° and
+/// 72°, 9 and 27 internal reflections. The sweep must hold at every wavelength there (no
+/// critical angle in the band, constant launch and exit media) and be what `spectrum` gives.
+#[test]
+fn dispersive_sweep_equals_per_wavelength_traces() {
+    use fringe::trace::dispersive_sweep::Sweep;
+    let c = |n: f64| Medium::constant("m", n);
+    let v = Medium::vacuum;
+    let stacks: Vec<Stack> = vec![
+        ((v(), bk7(), v()), 3.217e-6, None),
+        ((v(), bk7(), v()), 3.217e-6, Some(1.0)),
+        ((v(), bk7(), c(1.7)), 1.3e-6, None),
+        ((v(), bk7(), c(1.7)), 1.3e-6, Some(1.7)),
+        ((v(), c(1.38), bk7()), 0.41e-6, None),
+    ];
+    let lambdas: Vec<f64> = (0..41).map(|i| 400e-9 + 10e-9 * i as f64).collect();
+    let mut cases = 0;
+    let (mut worst_rt, mut worst_walk) = (0.0f64, 0.0f64);
+    for (media, d, transmitted) in &stacks {
+        for theta_deg in [0.5, 35.0, 72.0] {
+            for light in [Light::S, Light::P, Light::Unpolarized] {
+                for m in [9usize, 27] {
+                    let theta = f64::to_radians(theta_deg);
+                    let (scene, target) = film_scene(theta, media.clone(), *d, light, *transmitted);
+                    assert!(!round_trips::non_dispersive(&scene));
+                    let st = settings(m);
+                    let what = format!(
+                        "{media:?}, d {d:e}, {theta_deg}°, {light:?}, m {m}, transmitted \
+                         {transmitted:?}"
+                    );
+                    let mid = scene.optics(lambdas[20]).unwrap();
+                    let sweep = Sweep::new(&scene, &mid, &PROBES, &target, &st)
+                        .unwrap_or_else(|e| panic!("{what}: sweep refused: {e}"));
+                    let mut out = vec![0.0; lambdas.len()];
+                    let route = round_trips::spectrum(
+                        &scene,
+                        &PROBES,
+                        &target,
+                        &st,
+                        &lambdas,
+                        &mut Beats::default(),
+                        &mut out,
+                    )
+                    .unwrap();
+                    assert_eq!(route, Route::RoundTrips, "{what}");
+                    let mut acc = Accumulator::new();
+                    for (&l, &i) in lambdas.iter().zip(&out) {
+                        let swept = sweep
+                            .intensity(&scene, l)
+                            .unwrap()
+                            .unwrap_or_else(|| panic!("{what}, λ {l:e}: the sweep does not hold"));
+                        assert_eq!(i.to_bits(), swept.to_bits(), "{what}, λ {l:e}: spectrum");
+                        let optics = scene.optics(l).unwrap();
+                        let (rays, rt) =
+                            round_trips::rays_or_walk(&scene, &optics, &PROBES, &target, &st);
+                        assert_eq!(rt, Route::RoundTrips, "{what}, λ {l:e}");
+                        let i_rt = round_trips::intensity(&rays, l, &mut acc);
+                        let i_walk =
+                            trace::intensity(&walk(&scene, l, &target, &st), Fidelity::Vector);
+                        let (e_rt, e_walk) = ((i - i_rt).abs(), (i - i_walk).abs());
+                        worst_rt = worst_rt.max(e_rt);
+                        worst_walk = worst_walk.max(e_walk);
+                        assert!(
+                            e_rt <= 1e-14 && e_walk <= 1e-14,
+                            "{what}, λ {l:e}: sweep {i:e}, round trips {i_rt:e} (err {e_rt:e}), \
+                             walk {i_walk:e} (err {e_walk:e})"
+                        );
+                    }
+                    cases += 1;
+                }
+            }
+        }
+    }
+    eprintln!(
+        "{cases} cases × {} wavelengths: worst |sweep − round trips| {worst_rt:e}, \
+         |sweep − walk| {worst_walk:e}",
+        lambdas.len()
+    );
+}
+
+/// A critical angle inside the band: light from a constant n = 1.6 onto an N-BK7 film (on
+/// n = 1.7) at 72° reflects totally at the film's top face where n_BK7(λ) < 1.6 sin 72°
+/// (λ ≳ 497 nm). The sweep set up at 400 nm holds below the crossing and not beyond it; set
+/// up at the middle wavelength (600 nm, totally reflected: no order through the film) it is
+/// refused. `spectrum` sets it up again at the first wavelength traced by round trips and gives
+/// a trace's intensity at every wavelength (to 1e-14; the general walk beyond the crossing).
+#[test]
+fn dispersive_sweep_falls_back_across_a_critical_angle() {
+    use fringe::trace::dispersive_sweep::Sweep;
+    let theta = 72f64.to_radians();
+    let (scene, target) = film_scene(
+        theta,
+        (
+            Medium::constant("dense", 1.6),
+            bk7(),
+            Medium::constant("substrate", 1.7),
+        ),
+        1.3e-6,
+        Light::Unpolarized,
+        None,
+    );
+    let st = settings(27);
+    let lambdas: Vec<f64> = (0..41).map(|i| 400e-9 + 10e-9 * i as f64).collect();
+    let at = |l: f64| scene.optics(l).unwrap();
+    assert!(Sweep::new(&scene, &at(600e-9), &PROBES, &target, &st).is_err());
+    let sweep = Sweep::new(&scene, &at(400e-9), &PROBES, &target, &st).unwrap();
+    assert!(sweep.intensity(&scene, 450e-9).unwrap().is_some());
+    assert!(sweep.intensity(&scene, 700e-9).unwrap().is_none());
+    let mut out = vec![0.0; lambdas.len()];
+    let route = round_trips::spectrum(
+        &scene,
+        &PROBES,
+        &target,
+        &st,
+        &lambdas,
+        &mut Beats::default(),
+        &mut out,
+    )
+    .unwrap();
+    assert!(matches!(route, Route::GeneralWalk(_)), "route {route:?}");
+    let mut acc = Accumulator::new();
+    let mut by_round_trips = 0;
+    for (&l, &i) in lambdas.iter().zip(&out) {
+        let (rays, rt) = round_trips::rays_or_walk(&scene, &at(l), &PROBES, &target, &st);
+        by_round_trips += usize::from(rt == Route::RoundTrips);
+        let want = round_trips::intensity(&rays, l, &mut acc);
+        let err = (i - want).abs();
+        assert!(
+            err <= 1e-14,
+            "λ {l:e} ({rt:?}): actual {i:e}, expected {want:e}, err {err:e}"
+        );
+    }
+    assert!(
+        (5..35).contains(&by_round_trips),
+        "the crossing lies inside the band ({by_round_trips} wavelengths by round trips)"
+    );
+}
