@@ -266,7 +266,7 @@ fn spectrum_dispersive() {
         dispersion: Dispersion::bk7(),
     };
     let st_bk7 = spectrum_settings(theta, bk7.index(mid).expect("index"), D, mid);
-    let (scene_bk7, target_bk7) = airy_plate_of(theta, bk7, D);
+    let (scene_bk7, target_bk7) = airy_plate_of(theta, bk7.clone(), D);
     measure(
         "airy/spectrum bk7 per_wavelength walk",
         3,

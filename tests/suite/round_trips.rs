@@ -590,3 +590,68 @@ fn dispersive_sweep_falls_back_across_a_critical_angle() {
         "the crossing lies inside the band ({by_round_trips} wavelengths by round trips)"
     );
 }
+
+/// Where the sweep's structure does not hold at all (normal incidence: each channel's own frame
+/// picks s; two sources, which may share a coherence group) it is refused with its reason, and
+/// `spectrum` traces every wavelength: bit for bit a trace by round trips at each wavelength.
+/// A wavelength outside N-BK7's Sellmeier range is an error, not a NaN.
+#[test]
+fn dispersive_sweep_refused_where_its_structure_does_not_hold() {
+    use fringe::trace::dispersive_sweep::Sweep;
+    let media = (Medium::vacuum(), bk7(), Medium::vacuum());
+    let (normal, target_n) = film_scene(0.0, media.clone(), 2e-6, Light::Unpolarized, None);
+    let theta = 35f64.to_radians();
+    let (mut two, target_2) = film_scene(theta, media.clone(), 2e-6, Light::S, None);
+    let mut second = two.sources[0].clone();
+    second.name = "second".into();
+    second.polarization = Polarization::Linear {
+        reference: DVec3::X,
+        angle_rad: 0.0,
+    };
+    two.sources.push(second);
+    let st = settings(9);
+    let lambdas: Vec<f64> = (0..9).map(|i| 400e-9 + 50e-9 * i as f64).collect();
+    for (what, scene, target) in [
+        ("normal incidence", &normal, &target_n),
+        ("two sources", &two, &target_2),
+    ] {
+        let optics = scene.optics(600e-9).unwrap();
+        let why = Sweep::new(scene, &optics, &PROBES, target, &st).unwrap_err();
+        eprintln!("{what}: {why}");
+        let mut out = vec![0.0; lambdas.len()];
+        let route = round_trips::spectrum(
+            scene,
+            &PROBES,
+            target,
+            &st,
+            &lambdas,
+            &mut Beats::default(),
+            &mut out,
+        )
+        .unwrap();
+        assert_eq!(route, Route::RoundTrips, "{what}");
+        let mut acc = Accumulator::new();
+        for (&l, &i) in lambdas.iter().zip(&out) {
+            let (rays, _) =
+                round_trips::rays_or_walk(scene, &scene.optics(l).unwrap(), &PROBES, target, &st);
+            let want = round_trips::intensity(&rays, l, &mut acc);
+            assert_eq!(
+                i.to_bits(),
+                want.to_bits(),
+                "{what}, λ {l:e}: {i:e} vs {want:e}"
+            );
+        }
+    }
+    let (scene, target) = film_scene(theta, media, 2e-6, Light::Unpolarized, None);
+    let mut out = vec![0.0; 3];
+    let bad = round_trips::spectrum(
+        &scene,
+        &PROBES,
+        &target,
+        &st,
+        &[500e-9, 600e-9, 2600e-9],
+        &mut Beats::default(),
+        &mut out,
+    );
+    assert!(bad.is_err(), "2600 nm is outside N-BK7's range: {bad:?}");
+}
