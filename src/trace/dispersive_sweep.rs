@@ -31,7 +31,7 @@
 //! The path difference of two orders of one source that enter and leave by the same faces in
 //! the same directions is the optical path of the film segments they do not share: each film
 //! segment between the two faces is κ d (κ = n cos θ inside, the plane-wave phase of
-//! [`super::parallel_phase`]), so order k is the shallowest order's path plus j_k ΔS. The walk
+//! `trace::parallel_phase`), so order k is the shallowest order's path plus j_k ΔS. The walk
 //! sums the same path along its segments; the two agree to its rounding
 //! (`tests/suite/round_trips.rs`, `dispersive_sweep_equals_per_wavelength_traces`).
 //!
