@@ -19,7 +19,9 @@
 //!   ray phase, shared by the rays of the source's channels along one order;
 //!   the test `beats::spectrum_traced_once_matches_airy_and_per_wavelength_traces` checks it
 //!   against Airy to 1e-12). `per_wavelength`: a trace at every wavelength (what a dispersive
-//!   plate needs), for the constant plate and for N-BK7 (Sellmeier). `traced_once_2t`: 16
+//!   plate needs), for the constant plate and for N-BK7 (Sellmeier); `bk7_round_trips`: the
+//!   N-BK7 spectrum by `trace::round_trips::spectrum` (traced once by round trips, swept over
+//!   the wavelengths by `trace::dispersive_sweep`). `traced_once_2t`: 16
 //!   such spectra (angles 20°–50°) on a 2-thread pool.
 //!
 //! Run: `cargo bench -p fringe-benches --bench airy`
@@ -34,7 +36,7 @@ use fringe::optics::material::{Dispersion, Medium};
 use fringe::scene::Scene;
 use fringe::trace::beats::{Beats, vector_rays};
 use fringe::trace::path::{EnumerationLimits, Target};
-use fringe::trace::{self, TraceSettings};
+use fringe::trace::{self, TraceSettings, round_trips};
 use glam::DVec3;
 use std::hint::black_box;
 use std::time::Duration;
@@ -200,6 +202,21 @@ fn bench_spectrum(c: &mut Criterion) {
     });
     group.bench_function("bk7_per_wavelength", |b| {
         b.iter(|| black_box(per_wavelength(&scene_bk7, &target_bk7, &st_bk7)))
+    });
+    group.bench_function("bk7_round_trips", |b| {
+        b.iter(|| {
+            round_trips::spectrum(
+                &scene_bk7,
+                &[DVec3::new(0.0, 0.0, 0.001)],
+                &target_bk7,
+                &st_bk7,
+                &lambdas,
+                &mut beats,
+                &mut out,
+            )
+            .expect("indices");
+            black_box(&out);
+        })
     });
     // 16 spectra (angles 20°–50°) on two threads.
     let spectra: Vec<(Scene, Target, TraceSettings)> = (0..16)
