@@ -39,9 +39,10 @@
 //! [`Sweep::intensity`] answers `None`, the caller then traces λ by round trips or by the
 //! general walk): what [`super::round_trips::rays`] needs, one source, every channel coherent
 //! (no coherence id 0, none lost on the way), not at normal incidence (s from the plane of
-//! incidence), no event tunnelling, every face at λ met without total internal reflection
-//! ((n cos θ)² > 0 on both sides), and the indices of the launch and exit media at λ those at
-//! λ0 (then the exit direction is λ0's, the target's).
+//! incidence), no event tunnelling, no face reflecting totally into a layer (frustrated
+//! reflection), every face at λ reflecting totally where it did at λ0 and nowhere else (no
+//! critical angle crossed: (n cos θ)² keeps its sign on both sides), and the indices of the
+//! launch and exit media at λ those at λ0 (then the exit direction is λ0's, the target's).
 
 use super::round_trips::{NotApplicable, check_scene, extension, traced_orders};
 use super::{TraceSettings, phase_cycles};
@@ -115,6 +116,8 @@ pub struct Sweep {
     launch: (usize, f64),
     /// The last face met, whether the last event reflects, and the exit index at λ0.
     exit: (usize, bool, f64),
+    /// Per face, whether it reflects totally at λ0 (and must at every swept wavelength).
+    tir: [bool; MAX_FACES],
     /// The distance between the faces (m), double-double.
     thickness: DoubleDouble,
     /// W_σ = Σ_groups |Σ_channels a_σ|² (σ = s, p): the intensity per |F_σ|².
@@ -134,12 +137,14 @@ fn sides(optics: Option<SurfaceOptics>, face: Face) -> Option<(f64, f64)> {
 }
 
 /// The coefficients of `face` with indices (n1, n2) for a wave of Snell invariant `inv`, as
-/// `interaction` forms them for a dielectric face under the `vector` model; `None` under total
-/// internal reflection or grazing incidence ((n cos θ)² ≤ 0 on either side).
+/// `interaction` forms them for a dielectric face under the `vector` model (with no layer
+/// behind it, [`Sweep::new`] checks), and whether it reflects totally ((n2 cos θt)² < 0);
+/// `None` at grazing incidence or at the critical angle ((n cos θ)² = 0 on a side) or where no
+/// wave propagates on the incident side.
 #[inline]
-fn coefficients(inv: SnellInvariant, (n1, n2): (f64, f64)) -> Option<FaceCoefficients> {
+fn coefficients(inv: SnellInvariant, (n1, n2): (f64, f64)) -> Option<(FaceCoefficients, bool)> {
     let (q2_i, q2_t) = (inv.q2_in(n1), inv.q2_in(n2));
-    if q2_i.hi <= 0.0 || q2_t.hi <= 0.0 {
+    if q2_i.hi <= 0.0 || q2_t.hi == 0.0 {
         return None;
     }
     let cos_i = (q2_i.sqrt().to_f64() / n1).min(1.0);
@@ -148,10 +153,13 @@ fn coefficients(inv: SnellInvariant, (n1, n2): (f64, f64)) -> Option<FaceCoeffic
     } else {
         fresnel::fresnel_with_cos2_t(n1, n2, cos_i, q2_t.to_f64() / (n2 * n2))
     };
-    Some(FaceCoefficients {
-        r: [c.r_s, c.r_p],
-        t: [c.t_s, c.t_p],
-    })
+    Some((
+        FaceCoefficients {
+            r: [c.r_s, c.r_p],
+            t: [c.t_s, c.t_p],
+        },
+        q2_t.hi < 0.0,
+    ))
 }
 
 impl Sweep {
@@ -323,6 +331,7 @@ impl Sweep {
             deepest: None,
             further: 0,
             orders,
+            tir: [false; MAX_FACES],
             thickness: super::tail::film_thickness(scene),
             weights,
         };
@@ -345,14 +354,23 @@ impl Sweep {
         }
         // The coefficients the sweep forms at λ0 must be those the tracer applied, bit for bit.
         let mut table = [FaceCoefficients::default(); MAX_FACES];
+        let mut tir = [false; MAX_FACES];
         if !matches!(
-            sweep.face_coefficients(scene, optics.lambda_m, &mut table),
+            sweep.face_coefficients(scene, optics.lambda_m, &mut table, &mut tir),
             Ok(Some(_))
         ) {
             return refuse(
-                "a face reflects totally or is not dielectric at the reference wavelength",
+                "a face is met at its critical angle or is not dielectric at the reference \
+                 wavelength",
             );
         }
+        for (f, _) in sweep.faces.iter().zip(tir).filter(|x| x.1) {
+            // Total reflection into a layer adds the layer's frustrated coupling to r.
+            if optics.layers[f.surface][usize::from(!f.from_front)].is_some() {
+                return refuse("a face reflects totally into a layer (frustrated reflection)");
+            }
+        }
+        sweep.tir = tir;
         for (o, &i) in sweep.orders.iter().zip(&paths) {
             let applied = arrivals[i]
                 .vector
@@ -381,14 +399,15 @@ impl Sweep {
         self.lambda0_m
     }
 
-    /// Every face's coefficients at `lambda_m` into `table`, and the film's (n cos θ)²
-    /// (double-double); `Ok(None)` where the structure does not hold there (total internal
-    /// reflection, launch or exit index not λ0's).
+    /// Every face's coefficients at `lambda_m` into `table` and whether it reflects totally
+    /// into `tir`, and the film's (n cos θ)² (double-double); `Ok(None)` where the structure
+    /// does not hold there (a critical angle met, launch or exit index not λ0's).
     fn face_coefficients(
         &self,
         scene: &Scene,
         lambda_m: f64,
         table: &mut [FaceCoefficients; MAX_FACES],
+        tir: &mut [bool; MAX_FACES],
     ) -> Result<Option<DoubleDouble>, IndexError> {
         // The same indices and errors as `Scene::optics`.
         scene.ambient.index(lambda_m)?;
@@ -413,10 +432,11 @@ impl Sweep {
         let normal = scene.surfaces[self.faces[lf].surface].plane.normal;
         let inv = snell_invariant(self.dir0, normal, n[lf].0, None);
         for k in 0..self.faces.len() {
-            let Some(c) = coefficients(inv, n[k]) else {
+            let Some((c, t)) = coefficients(inv, n[k]) else {
                 return Ok(None);
             };
             table[k] = c;
+            tir[k] = t;
         }
         Ok(Some(inv.q2_in(n[self.film_face].0)))
     }
@@ -426,9 +446,15 @@ impl Sweep {
     /// Errors where an index cannot be formed there (as [`Scene::optics`]).
     pub fn intensity(&self, scene: &Scene, lambda_m: f64) -> Result<Option<f64>, IndexError> {
         let mut table = [FaceCoefficients::default(); MAX_FACES];
-        let Some(q2) = self.face_coefficients(scene, lambda_m, &mut table)? else {
+        let mut tir = [false; MAX_FACES];
+        let Some(q2) = self.face_coefficients(scene, lambda_m, &mut table, &mut tir)? else {
             return Ok(None);
         };
+        // Which faces reflect totally is part of the structure (a critical angle crossed
+        // changes the sequences).
+        if tir != self.tir {
+            return Ok(None);
+        }
         // One round trip: ΔS = 2 d n cos θ inside, its fraction of a cycle in double-double.
         let round_trip = self.thickness * q2.sqrt() * 2.0;
         let c = phase_cycles(round_trip, DoubleDouble::ZERO, lambda_m);
