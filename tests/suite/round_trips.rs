@@ -594,7 +594,10 @@ fn dispersive_sweep_falls_back_across_a_critical_angle() {
 /// Where the sweep's structure does not hold at all (normal incidence: each channel's own frame
 /// picks s; two sources, which may share a coherence group) it is refused with its reason, and
 /// `spectrum` traces every wavelength: bit for bit a trace by round trips at each wavelength.
-/// A wavelength outside N-BK7's Sellmeier range is an error, not a NaN.
+/// Light transmitted into an N-BK7 substrate toward the direction of 600 nm leaves at another
+/// angle at any other wavelength: the sweep set up at 600 nm holds there only, and `spectrum`
+/// traces the others (bit for bit). A wavelength outside N-BK7's Sellmeier range is an error,
+/// not a NaN.
 #[test]
 fn dispersive_sweep_refused_where_its_structure_does_not_hold() {
     use fringe::trace::dispersive_sweep::Sweep;
@@ -639,6 +642,58 @@ fn dispersive_sweep_refused_where_its_structure_does_not_hold() {
                 i.to_bits(),
                 want.to_bits(),
                 "{what}, λ {l:e}: {i:e} vs {want:e}"
+            );
+        }
+    }
+    let n600 = bk7().index(600e-9).unwrap();
+    let (into_bk7, target_t) = film_scene(
+        theta,
+        (Medium::vacuum(), Medium::constant("film", 1.38), bk7()),
+        0.41e-6,
+        Light::Unpolarized,
+        Some(n600),
+    );
+    let sweep = Sweep::new(
+        &into_bk7,
+        &into_bk7.optics(600e-9).unwrap(),
+        &PROBES,
+        &target_t,
+        &st,
+    )
+    .unwrap();
+    assert!(sweep.intensity(&into_bk7, 600e-9).unwrap().is_some());
+    assert!(sweep.intensity(&into_bk7, 550e-9).unwrap().is_none());
+    let mut out = vec![0.0; lambdas.len()];
+    round_trips::spectrum(
+        &into_bk7,
+        &PROBES,
+        &target_t,
+        &st,
+        &lambdas,
+        &mut Beats::default(),
+        &mut out,
+    )
+    .unwrap();
+    let mut acc = Accumulator::new();
+    for (&l, &i) in lambdas.iter().zip(&out) {
+        let (rays, _) = round_trips::rays_or_walk(
+            &into_bk7,
+            &into_bk7.optics(l).unwrap(),
+            &PROBES,
+            &target_t,
+            &st,
+        );
+        let want = round_trips::intensity(&rays, l, &mut acc);
+        if l == lambdas[lambdas.len() / 2] {
+            assert!(
+                (i - want).abs() <= 1e-14,
+                "into N-BK7, middle λ {l:e}: {i:e} vs {want:e}"
+            );
+        } else {
+            assert_eq!(
+                i.to_bits(),
+                want.to_bits(),
+                "into N-BK7, λ {l:e}: {i:e} vs {want:e}"
             );
         }
     }
