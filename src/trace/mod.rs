@@ -624,6 +624,7 @@ pub fn arrivals_with(
             coherence_length_m: src.coherence_length_m,
             found: &mut found,
             failed: failed.as_deref_mut(),
+            exact: parallel_phase::PlaneWavePhase::new(scene, src.emitter, target),
         };
         let tree = &plan.sequences[si];
         if let (true, Emitter::PlaneWave { .. }, Target::Direction { .. }) =
@@ -648,7 +649,10 @@ pub fn arrivals_with(
                     Ok((p, vector, paper))
                 });
             match carried {
-                Ok((p, vector, paper)) => out.arrive(Arc::new(p), vector, paper),
+                Ok((p, vector, paper)) => {
+                    let exact = out.exact.as_ref().and_then(|x| x.of_path(&p));
+                    out.arrive(Arc::new(p), vector, paper, exact)
+                }
                 Err(error) => out.fail(Trail::from(seq.to_vec()), error),
             }
         });
@@ -664,29 +668,56 @@ struct Recorder<'a, 'f> {
     coherence_length_m: f64,
     found: &'a mut Vec<Arrival>,
     failed: Option<&'f mut Vec<Failure>>,
+    /// A plane wave into the far field: the exact optical paths of its paths between parallel
+    /// planes ([`parallel_phase`]).
+    exact: Option<parallel_phase::PlaneWavePhase<'a>>,
 }
 
 impl Recorder<'_, '_> {
     /// The channels' arrivals along `path`, from their rays after its last event under the
-    /// vector model and, when traced, the paper's rules.
+    /// vector model and, when traced, the paper's rules; with the optical path `exact` (m)
+    /// instead of the traced sum where given (a plane wave between parallel planes,
+    /// [`parallel_phase`]: the sum's rounding grows with the lateral run, docs/PHYSICS.md §8).
     #[inline]
-    fn arrive(&mut self, path: Arc<SolvedPath>, vector: ChannelRays, paper: Option<ChannelRays>) {
+    fn arrive(
+        &mut self,
+        path: Arc<SolvedPath>,
+        vector: ChannelRays,
+        paper: Option<ChannelRays>,
+        exact: Option<DoubleDouble>,
+    ) {
         let first = self.found.len();
         let (found, channels, si) = (&mut *self.found, self.channels, self.source);
-        vector.emit(channels, self.target, self.coherence_length_m, |k, ray| {
-            found.push(Arrival {
-                source: si,
-                channel: channels[k],
-                path: Arc::clone(&path),
-                vector: ray,
-                paper: None,
-                tail: None,
-            })
-        });
+        vector.emit(
+            channels,
+            self.target,
+            self.coherence_length_m,
+            |k, mut ray| {
+                if let Some(phi) = exact {
+                    ray.optical_path = phi;
+                }
+                found.push(Arrival {
+                    source: si,
+                    channel: channels[k],
+                    path: Arc::clone(&path),
+                    vector: ray,
+                    paper: None,
+                    tail: None,
+                })
+            },
+        );
         if let Some(paper) = paper {
-            paper.emit(channels, self.target, self.coherence_length_m, |k, ray| {
-                found[first + k].paper = Some(ray)
-            });
+            paper.emit(
+                channels,
+                self.target,
+                self.coherence_length_m,
+                |k, mut ray| {
+                    if let Some(phi) = exact {
+                        ray.optical_path = phi;
+                    }
+                    found[first + k].paper = Some(ray)
+                },
+            );
         }
     }
 
@@ -739,6 +770,9 @@ fn far_field_walk(
         Trail::shared,
     );
     let mut rays = vec![vec![launched]; models.len()];
+    // The exact optical path after k events of the current beginning (`parallel_phase`), kept
+    // like `rays` (index 0: none yet).
+    let mut phases: Vec<Option<parallel_phase::Partial>> = vec![None];
     let mut valid = 1;
     let others = out.channels.len().saturating_sub(1);
     let nodes = tree.nodes();
@@ -792,10 +826,26 @@ fn far_field_walk(
                     if let Some(event) = stopped {
                         out.fail(paths.sequence(), PathError::CriticalAngle { event });
                     } else {
+                        let exact = out.exact.as_ref().and_then(|x| {
+                            // One term per event not met yet: O(1) per order, as the rays.
+                            phases.truncate(valid);
+                            for k in valid..=node.depth {
+                                let (ev, _) = paths.event(k - 1);
+                                let (d, n) = paths.segment(k - 1);
+                                let next = if k == 1 {
+                                    x.first(ev, d, n)
+                                } else {
+                                    x.step(phases[k - 1], ev, d, n)
+                                };
+                                phases.push(next);
+                            }
+                            let (d, n) = paths.segment(node.depth);
+                            x.finish(phases[node.depth], d, n)
+                        });
                         valid = node.depth + 1;
                         let mut at_end = rays.iter().map(|stack| stack[node.depth].clone());
                         let vector = at_end.next().unwrap();
-                        out.arrive(Arc::new(p), vector, at_end.next());
+                        out.arrive(Arc::new(p), vector, at_end.next(), exact);
                     }
                 }
                 Err(error) => out.fail(paths.sequence(), error),

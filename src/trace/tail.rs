@@ -250,7 +250,11 @@ pub fn close(
                  far orders lose coherence by the paper's rule)",
             );
         }
-        exact_order_phases(scene, src.emitter, si, arrivals);
+        // The traced orders arrive with their optical paths from Snell's invariant
+        // (`trace::parallel_phase`, every far-field walk): the closure multiplies the deepest
+        // one by 1/(1 − q), so a phase error growing with the order, as the sum along f64
+        // segments over a lateral run of metres has, is what it amplifies most
+        // (`fuzz_airy_s1_203`: 2.5e-9 rad at the ninth order was 7.1e-9 of R).
         let own: Vec<&Arrival> = arrivals.iter().filter(|a| a.source == si).collect();
         let Some(deep) = own.iter().max_by_key(|a| a.path.sequence.len()).copied() else {
             continue;
@@ -425,58 +429,6 @@ pub fn close(
     let n = added.len();
     arrivals.extend(added);
     Ok(n)
-}
-
-/// The traced orders' phases where their tail is closed, from Snell's invariant
-/// ([`super::parallel_phase`]): each arrival of source `si` gets the optical path of its shortest
-/// order (as traced: the source's absolute phase stays the tracer's) plus the exact difference
-/// of the two. The closure multiplies the deepest order by 1/(1 − q), so a phase error that
-/// grows with the order (the segments' f64 directions over a lateral run of metres near
-/// grazing) is what it amplifies most (`fuzz_airy_s1_203`: 2.5e-9 rad at the ninth order, 7.1e-9
-/// of R). Applied only here, on the few orders traced below a closed tail: for every order of
-/// every walk it costs O(m) per order, O(m²) per point.
-fn exact_order_phases(scene: &Scene, emitter: Emitter, si: usize, arrivals: &mut [Arrival]) {
-    let Emitter::PlaneWave {
-        reference_point, ..
-    } = emitter
-    else {
-        return;
-    };
-    // The differences do not depend on the far-field wavefront's reference: take the wave's.
-    let target = crate::trace::path::Target::Direction {
-        dir: DVec3::Z,
-        reference: reference_point,
-    };
-    let exact =
-        |a: &Arrival| super::parallel_phase::far_field_path(scene, emitter, &a.path, &target);
-    let Some((base_traced, base_exact)) = arrivals
-        .iter()
-        .filter(|a| a.source == si)
-        .min_by_key(|a| a.path.sequence.len())
-        .and_then(|a| exact(a).map(|e| (a.vector.optical_path, e)))
-    else {
-        return;
-    };
-    let mut exacts = Vec::with_capacity(arrivals.len());
-    for a in arrivals.iter() {
-        if a.source != si {
-            exacts.push(None);
-            continue;
-        }
-        let Some(e) = exact(a) else {
-            return; // one order not between parallel faces: keep every traced phase
-        };
-        exacts.push(Some(e));
-    }
-    for (a, e) in arrivals.iter_mut().zip(exacts) {
-        if let Some(e) = e {
-            let phi = base_traced + (e - base_exact);
-            a.vector.optical_path = phi;
-            if let Some(p) = &mut a.paper {
-                p.optical_path = phi;
-            }
-        }
-    }
 }
 
 /// Whether the tracer reflects `path`'s light totally at the first face it meets (the wave

@@ -154,6 +154,13 @@ impl<'a> FarFieldPaths<'a> {
         (*b.sequence.last().unwrap(), *b.points.last().unwrap())
     }
 
+    /// The direction and index of segment `k` of the current beginning: from event k − 1 (the
+    /// launch for k = 0) to event k, or out of the last event for k = [`Self::depth`].
+    pub fn segment(&self, k: usize) -> (DVec3, f64) {
+        let b = &self.stack[k];
+        (*b.dirs.last().unwrap(), *b.indices.last().unwrap())
+    }
+
     /// The current beginning's sequence.
     pub fn sequence(&self) -> Trail<Event> {
         self.stack.last().unwrap().sequence.clone()
