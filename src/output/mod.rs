@@ -5,5 +5,6 @@
 pub mod figures;
 pub mod memory;
 pub mod render;
+pub mod stack_kernel;
 #[doc(hidden)]
 pub mod report;

@@ -41,6 +41,7 @@ use crate::harness::case::build::{self, Built, GridGeometry, Overrides};
 use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
+use crate::output::stack_kernel::{KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -216,6 +217,18 @@ pub struct Render {
     pub paths: usize,
     /// Wall time of the render (s).
     pub seconds: f64,
+    /// Pixels whose rays the parallel-stack kernel gave (the rest were traced exactly).
+    pub kernel_pixels: usize,
+}
+
+/// How the rays of a pixel are found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelPath {
+    /// The parallel-stack kernel ([`crate::output::stack_kernel`]) for the pixels it vouches
+    /// for, where the scene and shadings are of its class; the exact trace everywhere else.
+    Auto,
+    /// Every pixel traced exactly ([`arrivals_at`]).
+    Exact,
 }
 
 /// A render request.
@@ -330,6 +343,8 @@ struct Context<'a> {
     shadings: &'a [Shading],
     /// Whether some shading needs the rays under the paper's rules.
     paper_rules: bool,
+    /// The parallel-stack kernel, where the scene and shadings are of its class.
+    kernel: Option<StackKernel>,
 }
 
 /// Per-thread scratch space.
@@ -339,20 +354,34 @@ struct Scratch {
     prepared: Vec<SpectralContribution>,
     /// One per shading.
     beats: Vec<Beats>,
+    kernel: KernelScratch,
 }
 
 impl Context<'_> {
     /// Adds Σ_i W_i I_i of every shading at `point` into `out` (one [f64; 3] per shading);
-    /// returns the number of arrivals traced.
+    /// returns the number of arrivals and whether the kernel gave them.
     fn pixel(
         &self,
         point: DVec3,
         observer: &Observer,
         s: &mut Scratch,
         out: &mut [[f64; 3]],
-    ) -> usize {
+    ) -> (usize, bool) {
         let scene = &self.built.scene;
         s.beats.resize_with(self.shadings.len(), Beats::default);
+        // The kernel serves only `vector` shadings of a non-dispersive scene (`render_with`).
+        if let Some(k) = &self.kernel
+            && k.contributions(point, observer, &mut s.kernel, &mut s.prepared)
+        {
+            for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
+                beats.set(&s.prepared);
+                let w = beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc);
+                for c in 0..3 {
+                    sum[c] += w[c];
+                }
+            }
+            return (s.prepared.len(), true);
+        }
         if !self.dispersive {
             let optics = &self.optics[0];
             let arr = arrivals_at(
@@ -374,7 +403,7 @@ impl Context<'_> {
                     sum[c] += w[c];
                 }
             }
-            arr.len()
+            (arr.len(), false)
         } else {
             let mut paths = 0;
             for (j, &(lambda, w)) in self.samples.iter().enumerate() {
@@ -398,7 +427,7 @@ impl Context<'_> {
                     }
                 }
             }
-            paths
+            (paths, false)
         }
     }
 }
@@ -435,8 +464,13 @@ pub fn memory_estimate(screen: &Screen, shadings: usize) -> u64 {
     sums + picture + (64 << 20)
 }
 
-/// Render `case` as requested.
+/// Render `case` as requested ([`PixelPath::Auto`]).
 pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
+    render_with(case, req, PixelPath::Auto)
+}
+
+/// Render `case` as requested, the pixels' rays found as `path` says.
+pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render, String> {
     let t0 = Instant::now();
     if req.shadings.is_empty() {
         return Err("render: no shading (fidelity level) requested".into());
@@ -486,7 +520,19 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
         optics.push(o);
     }
+    let kernel = if path == PixelPath::Auto
+        && !dispersive
+        && req
+            .shadings
+            .iter()
+            .all(|s| *s == Shading::Level(Fidelity::Vector))
+    {
+        StackKernel::new(&built.scene, &optics[0], &plans[0], &settings)
+    } else {
+        None
+    };
     let ctx = Context {
+        kernel,
         built: &built,
         settings: &settings,
         lambdas: samples.iter().map(|s| s.0).collect(),
@@ -500,26 +546,29 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
     };
     let bar = progress_bar(g.rows as u64, req.progress);
     let ns = req.shadings.len();
-    let rows: Vec<(Vec<[f64; 3]>, usize)> = (0..g.rows)
+    let rows: Vec<(Vec<[f64; 3]>, usize, usize)> = (0..g.rows)
         .into_par_iter()
         .map_init(Scratch::default, |s, row| {
             let mut out = vec![[0.0; 3]; g.columns * ns];
-            let mut paths = 0;
+            let (mut paths, mut by_kernel) = (0, 0);
             for col in 0..g.columns {
                 let p = g.position(col, row);
-                paths += ctx.pixel(
+                let (n, k) = ctx.pixel(
                     p,
                     &req.screen.observer(p),
                     s,
                     &mut out[col * ns..(col + 1) * ns],
                 );
+                paths += n;
+                by_kernel += usize::from(k);
             }
             bar.inc(1);
-            (out, paths)
+            (out, paths, by_kernel)
         })
         .collect();
     bar.finish_and_clear();
     let paths = rows.iter().map(|r| r.1).sum();
+    let kernel_pixels = rows.iter().map(|r| r.2).sum();
     let images = req
         .shadings
         .iter()
@@ -527,7 +576,7 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         .map(|(k, sh)| {
             let pixels = rows
                 .iter()
-                .flat_map(|(r, _)| (0..g.columns).map(move |col| r[col * ns + k]));
+                .flat_map(|(r, _, _)| (0..g.columns).map(move |col| r[col * ns + k]));
             Image {
                 shading: *sh,
                 width: g.columns,
@@ -546,6 +595,7 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         dispersive,
         paths,
         seconds: t0.elapsed().as_secs_f64(),
+        kernel_pixels,
     })
 }
 
@@ -666,7 +716,8 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
         },
     )?;
     let mut lines = vec![format!(
-        "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) traced in {:.2} s",
+        "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) in {:.2} s ({} pixel(s) by \
+         the parallel-stack kernel, the rest traced exactly)",
         case.spec.name,
         g.columns,
         g.rows,
@@ -677,7 +728,8 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
             " (non-dispersive: paths solved once per pixel)"
         },
         r.paths,
-        r.seconds
+        r.seconds,
+        r.kernel_pixels
     )];
     let base = cmd.output.clone().unwrap_or_else(|| {
         std::path::Path::new("reports")

@@ -36,6 +36,7 @@ mod pipeline_props;
 mod precision_classes;
 mod render;
 mod renderer_models;
+mod stack_kernel;
 mod round_trips;
 mod spectrum_batch;
 mod stability;
