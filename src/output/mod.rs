@@ -4,6 +4,7 @@
 #[doc(hidden)]
 pub mod figures;
 pub mod memory;
+pub(crate) mod beat_table;
 pub mod render;
 pub mod stack_kernel;
 #[doc(hidden)]

@@ -41,6 +41,7 @@ use crate::harness::case::build::{self, Built, GridGeometry, Overrides};
 use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
+use crate::output::beat_table::{BeatTable, TableCache};
 use crate::output::stack_kernel::{KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
@@ -345,6 +346,8 @@ struct Context<'a> {
     paper_rules: bool,
     /// The parallel-stack kernel, where the scene and shadings are of its class.
     kernel: Option<StackKernel>,
+    /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
+    table: Option<BeatTable>,
 }
 
 /// Per-thread scratch space.
@@ -355,6 +358,7 @@ struct Scratch {
     /// One per shading.
     beats: Vec<Beats>,
     kernel: KernelScratch,
+    table: TableCache,
 }
 
 impl Context<'_> {
@@ -375,7 +379,14 @@ impl Context<'_> {
         {
             for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
                 beats.set(&s.prepared);
-                let w = beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc);
+                let w = match self
+                    .table
+                    .as_ref()
+                    .and_then(|t| t.weighted_sum(beats, &mut s.table))
+                {
+                    Some(w) => w,
+                    None => beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc),
+                };
                 for c in 0..3 {
                     sum[c] += w[c];
                 }
@@ -531,8 +542,16 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
     } else {
         None
     };
+    let table = if kernel.is_some() && samples.len() >= 16 {
+        let l: Vec<f64> = samples.iter().map(|s| s.0).collect();
+        let w: Vec<[f64; 3]> = samples.iter().map(|s| s.1).collect();
+        BeatTable::new(&l, &w)
+    } else {
+        None
+    };
     let ctx = Context {
         kernel,
+        table,
         built: &built,
         settings: &settings,
         lambdas: samples.iter().map(|s| s.0).collect(),
@@ -551,6 +570,7 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         .map_init(Scratch::default, |s, row| {
             let mut out = vec![[0.0; 3]; g.columns * ns];
             let (mut paths, mut by_kernel) = (0, 0);
+            s.kernel.new_row();
             for col in 0..g.columns {
                 let p = g.position(col, row);
                 let (n, k) = ctx.pixel(

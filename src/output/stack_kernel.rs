@@ -22,8 +22,10 @@
 //!
 //!   F(p) = Σ_k H_k p / q_k(p) − D = 0,   q_k(p) = √(n_k² − p²) = n_k cos θ_k,
 //!
-//! increasing and convex on [0, min n_k): Newton in f64 from the neighbouring pixel's root,
-//! safeguarded by bisection, to a step below 4 ulp of p. Each segment's direction is
+//! increasing and convex on [0, min n_k): Newton in f64, safeguarded by bisection, from the
+//! linear extrapolation of the two previous pixels' roots in the row (the row's first pixel
+//! starts from min n_k / 2, so a row's values do not depend on the thread that renders it),
+//! until the step's predicted error is below u/4 of p ([`solve_p`]). Each segment's direction is
 //! (p u ± q_k N)/n_k (u: the unit lateral direction), the Fresnel coefficients of each event
 //! come from the same cosines the tracer uses (cos θi = q1/n1, cos²θt = q2²/n2²,
 //! [`fresnel::fresnel_with_cos2_t`]), and each channel's field is carried through the events in
@@ -60,7 +62,7 @@ use crate::optics::fresnel;
 use crate::optics::interaction::SurfaceOptics;
 use crate::optics::ray::{Field3, INCOHERENT};
 use crate::scene::geometry::{Extent, Plane, Rect};
-use crate::scene::source::{Channel, Emitter};
+use crate::scene::source::{Channel, ChannelField, Emitter, field_reference};
 use crate::scene::{Scene, SceneOptics, SurfaceKind};
 use crate::trace::beats::SpectralContribution;
 use crate::trace::path::EventKind;
@@ -114,6 +116,9 @@ struct KernelSource {
     z: f64,
     slab: usize,
     channels: Vec<Channel>,
+    /// Per channel, a linear channel's (reference, cos, sin of its angle): its launch field
+    /// as [`Channel::launch`] forms it, the angle's cosine and sine taken once.
+    linear: Vec<Option<(DVec3, f64, f64)>>,
     coherence_length_m: f64,
     /// One per candidate sequence of the plan, in its order; `None`: never arrives.
     seqs: Vec<Option<Compiled>>,
@@ -136,13 +141,22 @@ pub(crate) struct StackKernel {
 /// Per-thread scratch space of the kernel.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct KernelScratch {
-    /// Last root per (source, sequence), the next pixel's start.
-    guess: Vec<f64>,
+    /// The last two roots per (source, sequence) in the current row (0: none yet): the next
+    /// pixel starts from their linear extrapolation.
+    guess: Vec<[f64; 2]>,
     h: Vec<f64>,
     ref_h: Vec<f64>,
     dirs: Vec<DVec3>,
     /// Per event: s, d_i × s, d_o × s, c_s, c_p.
     frames: Vec<(DVec3, DVec3, DVec3, Complex64, Complex64)>,
+}
+
+impl KernelScratch {
+    /// Forget the roots of the previous row: each row then starts alike whichever thread
+    /// renders it, so the picture does not depend on the thread count.
+    pub(crate) fn new_row(&mut self) {
+        self.guess.fill([0.0; 2]);
+    }
 }
 
 /// √((n − p)(n + p)) = n cos θ.
@@ -152,6 +166,10 @@ fn q_of(n: f64, p: f64) -> f64 {
 }
 
 /// The root of the lateral equation (module docs), or `None` without convergence.
+///
+/// Newton's error after a step δ is ≈ (F''/2F') δ² (F' = Σ H n²/q³, F'' = Σ 3 H n² p/q⁵, so
+/// F''/2F' ≤ 1.5 p / min q²): once that is below u/4 of p the step is taken and the root
+/// returned without another evaluation; a step below 4 ulp of p ends it too.
 fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> {
     let (mut lo, mut hi) = (0.0, p_max);
     let mut p = if guess > 0.0 && guess < p_max {
@@ -161,12 +179,14 @@ fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> 
     };
     for _ in 0..100 {
         let (mut f, mut df) = (-d, 0.0);
+        let mut q2_min = f64::INFINITY;
         for (&hk, &nk) in h.iter().zip(n) {
             if hk != 0.0 {
                 let q2 = (nk - p) * (nk + p);
                 let q = q2.sqrt();
                 f += hk * p / q;
                 df += hk * nk * nk / (q2 * q);
+                q2_min = q2_min.min(q2);
             }
         }
         if f > 0.0 {
@@ -176,9 +196,12 @@ fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> 
         } else {
             return Some(p);
         }
-        let mut next = p - f / df;
+        let step = f / df;
+        let mut next = p - step;
         if !(next > lo && next < hi) {
             next = 0.5 * (lo + hi);
+        } else if 1.5 * p / q2_min * step * step <= 0.25 * f64::EPSILON * p {
+            return Some(next);
         }
         if (next - p).abs() <= 4.0 * f64::EPSILON * p {
             return Some(next);
@@ -292,11 +315,22 @@ impl StackKernel {
             if tunnel {
                 return None;
             }
+            let channels = src.channels();
             sources.push(KernelSource {
                 position,
                 z,
                 slab,
-                channels: src.channels(),
+                linear: channels
+                    .iter()
+                    .map(|ch| match ch.field {
+                        ChannelField::Linear {
+                            reference,
+                            angle_rad,
+                        } => Some((reference, angle_rad.cos(), angle_rad.sin())),
+                        ChannelField::Dipole { .. } => None,
+                    })
+                    .collect(),
+                channels,
                 coherence_length_m: src.coherence_length_m,
                 seqs,
             });
@@ -407,7 +441,7 @@ impl StackKernel {
         }
         let pix_slab = self.plane_z.iter().filter(|&&pz| pz < zp).count();
         let total: usize = self.sources.iter().map(|src| src.seqs.len()).sum();
-        s.guess.resize(total, 0.0);
+        s.guess.resize(total, [0.0; 2]);
         s.h.resize(ns, 0.0);
         s.ref_h.resize(ns, 0.0);
         let mut flat = 0;
@@ -442,10 +476,12 @@ impl StackKernel {
                     s.h[c.seg_slab[0]] += (c.events[0].z - src.z).abs();
                     s.h[c.seg_slab[last]] += (zp - c.events[last - 1].z).abs();
                 }
-                let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, s.guess[idx]) else {
+                let [g1, g2] = s.guess[idx];
+                let start = if g2 > 0.0 { 2.0 * g1 - g2 } else { g1 };
+                let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, start) else {
                     return false;
                 };
-                s.guess[idx] = p;
+                s.guess[idx] = [p, g1];
                 if p < 1e-9 {
                     return false;
                 }
@@ -531,8 +567,23 @@ impl StackKernel {
                 if (path - src.coherence_length_m).abs() <= 1e-9 * path {
                     return false;
                 }
-                for ch in &src.channels {
-                    let (e, amp) = ch.launch(s.dirs[0]);
+                let d0 = s.dirs[0];
+                let mut shared: Option<(DVec3, DVec3)> = None;
+                for (ch, linear) in src.channels.iter().zip(&src.linear) {
+                    let (e, amp) = match *linear {
+                        Some((reference, cos, sin)) => {
+                            let e_ref = match shared {
+                                Some((r, e)) if r == reference => e,
+                                _ => {
+                                    let e = field_reference(reference, d0);
+                                    shared = Some((reference, e));
+                                    e
+                                }
+                            };
+                            (cos * e_ref + sin * d0.cross(e_ref), 1.0)
+                        }
+                        None => ch.launch(d0),
+                    };
                     let a = amp * ch.intensity.sqrt();
                     let mut f: Field3 = [
                         Complex64::from(e.x * a),
@@ -598,6 +649,9 @@ impl StackKernel {
                     continue;
                 }
                 let t = (sh.plane.point - a).dot(sh.plane.normal) / den;
+                if !(-0.5..=1.5).contains(&t) {
+                    continue;
+                }
                 let tm = self.margin / ab.length();
                 if t < -tm || t > 1.0 + tm {
                     continue;
