@@ -139,12 +139,10 @@ impl BeatTable {
     /// or a path difference is beyond 2^52 nodes.
     pub(crate) fn weighted_sum(&self, beats: &Beats, cache: &mut TableCache) -> Option<[f64; 3]> {
         let (constant, terms) = beats.paired_terms()?;
-        let mut out = [0.0; 3];
-        for c in 0..3 {
-            out[c] = constant * self.weight_sums[c];
-        }
+        let mut out = self.weight_sums.map(|w| constant * w);
         for (delta, extra, b) in terms {
-            if !((delta / self.h).abs() < 4.5e15) {
+            // Also refuses a NaN.
+            if (delta / self.h).abs().partial_cmp(&4.5e15) != Some(std::cmp::Ordering::Less) {
                 return None;
             }
             let b = if extra == 0.0 {

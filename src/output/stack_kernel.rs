@@ -303,14 +303,16 @@ impl StackKernel {
             scale = scale.max(position.abs().max_element());
             let z = normal.dot(position - origin);
             let slab = plane_z.iter().filter(|&&pz| pz < z).count();
-            if plane_z.iter().any(|&pz| pz == z) || slab_n[slab] != optics.ambient_index {
+            if plane_z.contains(&z) || slab_n[slab] != optics.ambient_index {
                 return None;
             }
             let mut seqs = Vec::new();
             let mut tunnel = false;
             plan.sequences[si].for_each(|seq| {
                 tunnel |= seq.iter().any(|e| e.kind == EventKind::Tunnel);
-                seqs.push(Self::compile(scene, &planes, &slab_n, seq, slab, z, &plane_of));
+                seqs.push(Self::compile(
+                    scene, &planes, &slab_n, seq, slab, z, &plane_of,
+                ));
             });
             if tunnel {
                 return None;
@@ -532,8 +534,7 @@ impl StackKernel {
                     } else {
                         (f.t_s, f.t_p)
                     };
-                    s.frames
-                        .push((sv, d_i.cross(sv), d_o.cross(sv), cs, cp));
+                    s.frames.push((sv, d_i.cross(sv), d_o.cross(sv), cs, cp));
                 }
                 // The optical path (for the coherence-length rule) and Δs.
                 let mut path = p * d;
@@ -630,12 +631,11 @@ impl StackKernel {
         let last = c.seg_slab.len() - 1;
         let mut a = src.position;
         let mut za = src.z;
-        for i in 0..=last {
+        for (i, &d) in dirs.iter().enumerate().take(last + 1) {
             let b = if i == last {
                 point
             } else {
                 let zb = c.events[i].z;
-                let d = dirs[i];
                 // Along d to height zb.
                 let t = (zb - za) / d.dot(nn);
                 let b = a + t * d;

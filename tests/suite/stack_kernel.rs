@@ -16,7 +16,9 @@ use fringe::colour::{Illuminant, SpectralIntegrator, WavelengthGrid};
 use fringe::harness::case::build::GridGeometry;
 use fringe::harness::case::load::Case;
 use fringe::harness::case::spec::MediumSpec;
-use fringe::output::render::{self, ImageValues, PixelPath, Render, Request, Screen, Shading, Spectrum};
+use fringe::output::render::{
+    self, ImageValues, PixelPath, Render, Request, Screen, Shading, Spectrum,
+};
 use glam::DVec3;
 
 const TOLERANCE: f64 = 1e-10;
@@ -35,7 +37,12 @@ fn white(samples: usize) -> Spectrum {
     )
 }
 
-fn both(case: &Case, screen: Screen, shadings: Vec<Shading>, spectrum: Spectrum) -> (Render, Render) {
+fn both(
+    case: &Case,
+    screen: Screen,
+    shadings: Vec<Shading>,
+    spectrum: Spectrum,
+) -> (Render, Render) {
     let req = Request {
         screen,
         shadings,
@@ -76,9 +83,17 @@ fn max_deviation(a: &Render, b: &Render) -> f64 {
 fn the_kernel_gives_the_exact_trace_of_the_plate_in_white_light() {
     let case = plate();
     let screen = Screen::from_probe(&case.spec.probe, Some((60, 60))).unwrap();
-    let (fast, exact) = both(&case, screen, vec![Shading::Level(Fidelity::Vector)], white(81));
+    let (fast, exact) = both(
+        &case,
+        screen,
+        vec![Shading::Level(Fidelity::Vector)],
+        white(81),
+    );
     assert_eq!(exact.kernel_pixels, 0);
-    assert_eq!(fast.kernel_pixels, 3600, "every pixel of the plate picture is in the class");
+    assert_eq!(
+        fast.kernel_pixels, 3600,
+        "every pixel of the plate picture is in the class"
+    );
     assert_eq!(fast.paths, exact.paths, "the same arrivals");
     let dev = max_deviation(&fast, &exact);
     eprintln!("white 81 λ, 60×60: max |kernel − exact| = {dev:e} of the peak");
@@ -92,7 +107,10 @@ fn the_kernel_gives_the_exact_trace_of_the_plate_in_monochrome() {
     let (fast, exact) = both(
         &case,
         screen,
-        vec![Shading::Level(Fidelity::Vector), Shading::Level(Fidelity::Vector)],
+        vec![
+            Shading::Level(Fidelity::Vector),
+            Shading::Level(Fidelity::Vector),
+        ],
         Spectrum::CaseLight,
     );
     assert_eq!(fast.kernel_pixels, 3600);
@@ -118,13 +136,24 @@ fn pixels_the_kernel_cannot_vouch_for_are_traced_exactly() {
         looks_toward: Some(DVec3::new(0.0, 0.0, -1.0)),
         strip: false,
     };
-    let (fast, exact) = both(&case, screen, vec![Shading::Level(Fidelity::Vector)], white(21));
+    let (fast, exact) = both(
+        &case,
+        screen,
+        vec![Shading::Level(Fidelity::Vector)],
+        white(21),
+    );
     assert!(
         fast.kernel_pixels < 21 * 21,
         "the pixel above the source went to the exact trace"
     );
-    assert!(fast.kernel_pixels > 21 * 21 / 2, "the kernel served the rest");
-    assert_eq!(fast.paths, exact.paths, "the same arrivals (the shield stops the same beams)");
+    assert!(
+        fast.kernel_pixels > 21 * 21 / 2,
+        "the kernel served the rest"
+    );
+    assert_eq!(
+        fast.paths, exact.paths,
+        "the same arrivals (the shield stops the same beams)"
+    );
     let dev = max_deviation(&fast, &exact);
     eprintln!(
         "over the source: {} of 441 pixels by the kernel, max deviation {dev:e}",
@@ -154,9 +183,17 @@ fn scenes_outside_the_class_fall_back_to_the_exact_trace() {
                 Shading::Level(Fidelity::PaperRules),
             ],
         ),
-        ("plate, scalar", &plate, vec![Shading::Level(Fidelity::Scalar)]),
+        (
+            "plate, scalar",
+            &plate,
+            vec![Shading::Level(Fidelity::Scalar)],
+        ),
         // A dispersive medium.
-        ("BK7 plate", &dispersive, vec![Shading::Level(Fidelity::Vector)]),
+        (
+            "BK7 plate",
+            &dispersive,
+            vec![Shading::Level(Fidelity::Vector)],
+        ),
         // Slits: no point sources over parallel planes.
         ("Young", &young, vec![Shading::Level(Fidelity::Vector)]),
     ];
@@ -164,6 +201,10 @@ fn scenes_outside_the_class_fall_back_to_the_exact_trace() {
         let screen = Screen::from_probe(&case.spec.probe, Some((9, 7))).unwrap();
         let (fast, exact) = both(case, screen, shadings, white(9));
         assert_eq!(fast.kernel_pixels, 0, "{name}: no pixel by the kernel");
-        assert_eq!(linear(&fast), linear(&exact), "{name}: the exact trace, bit for bit");
+        assert_eq!(
+            linear(&fast),
+            linear(&exact),
+            "{name}: the exact trace, bit for bit"
+        );
     }
 }
