@@ -17,11 +17,22 @@
 //!
 //! The nodes are computed on demand into a per-thread direct-mapped cache (a node's value is a
 //! function of k alone, so the picture does not depend on the thread count or on the order in
-//! which pixels are visited).
+//! which pixels are visited). The cache is thread-local and kept for the table's lifetime
+//! (rayon calls a render's scratch initializer once per job split, and a fresh cache per split
+//! recomputed its ~2000 nodes each time).
 
 use crate::accumulate::phasor_from_cycles;
 use crate::trace::beats::Beats;
 use num_complex::Complex64;
+use std::cell::RefCell;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// Identities of tables, so a thread's cache knows whose nodes it holds.
+static NEXT_TABLE: AtomicU64 = AtomicU64::new(1);
+
+thread_local! {
+    static CACHE: RefCell<TableCache> = RefCell::new(TableCache::default());
+}
 
 /// The interpolation error bound per unit of Σ_i |w_ci| (module docs).
 pub(crate) const RELATIVE_BOUND: f64 = 1e-12;
@@ -42,11 +53,15 @@ pub(crate) struct BeatTable {
     weight_sums: [f64; 3],
     /// Node spacing (m).
     h: f64,
+    /// This table's identity (`NEXT_TABLE`).
+    id: u64,
 }
 
 /// Per-thread node cache.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct TableCache {
+    /// The table whose nodes the slots hold (0: none).
+    owner: u64,
     slots: Vec<Option<(i64, Node)>>,
 }
 
@@ -84,6 +99,7 @@ impl BeatTable {
             weights: weights.to_vec(),
             weight_sums,
             h,
+            id: NEXT_TABLE.fetch_add(1, Ordering::Relaxed),
         })
     }
 
@@ -104,8 +120,10 @@ impl BeatTable {
     }
 
     fn cached<'a>(&self, cache: &'a mut TableCache, k: i64) -> &'a Node {
-        if cache.slots.len() != SLOTS {
-            cache.slots = vec![None; SLOTS];
+        if cache.owner != self.id || cache.slots.len() != SLOTS {
+            cache.owner = self.id;
+            cache.slots.clear();
+            cache.slots.resize(SLOTS, None);
         }
         let slot = &mut cache.slots[(k as u64 as usize) & (SLOTS - 1)];
         if !matches!(slot, Some((kk, _)) if *kk == k) {
@@ -137,7 +155,12 @@ impl BeatTable {
     /// Σ_i w_i I(λ_i) of `beats` (the same sum as [`Beats::weighted_sum`] on this table's grid,
     /// to the bound of the module docs), or `None` where the beats are not in the paired form
     /// or a path difference is beyond 2^52 nodes.
-    pub(crate) fn weighted_sum(&self, beats: &Beats, cache: &mut TableCache) -> Option<[f64; 3]> {
+    pub(crate) fn weighted_sum(&self, beats: &Beats) -> Option<[f64; 3]> {
+        CACHE.with(|c| self.weighted_sum_with(beats, &mut c.borrow_mut()))
+    }
+
+    /// [`BeatTable::weighted_sum`] with the node cache `cache`.
+    fn weighted_sum_with(&self, beats: &Beats, cache: &mut TableCache) -> Option<[f64; 3]> {
         let (constant, terms) = beats.paired_terms()?;
         let mut out = self.weight_sums.map(|w| constant * w);
         for (delta, extra, b) in terms {

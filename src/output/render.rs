@@ -56,7 +56,7 @@ use crate::harness::case::build::{self, Built, GridGeometry, Overrides};
 use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
-use crate::output::beat_table::{BeatTable, TableCache};
+use crate::output::beat_table::BeatTable;
 use crate::output::stack_kernel::{KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
@@ -373,7 +373,6 @@ struct Scratch {
     /// One per shading.
     beats: Vec<Beats>,
     kernel: KernelScratch,
-    table: TableCache,
 }
 
 impl Context<'_> {
@@ -394,11 +393,7 @@ impl Context<'_> {
         {
             for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
                 beats.set(&s.prepared);
-                let w = match self
-                    .table
-                    .as_ref()
-                    .and_then(|t| t.weighted_sum(beats, &mut s.table))
-                {
+                let w = match self.table.as_ref().and_then(|t| t.weighted_sum(beats)) {
                     Some(w) => w,
                     None => beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc),
                 };
