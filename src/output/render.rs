@@ -36,7 +36,7 @@
 //! (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels it cannot
 //! vouch for, and every other scene or shading, are traced exactly ([`PixelPath::Exact`]
 //! forces that everywhere). With 16 wavelengths or more, the kernel's pixels take their
-//! spectral sums from [`crate::output::beat_table`] (one table read per beat term instead of
+//! spectral sums from `output::beat_table` (one table read per beat term instead of
 //! one phasor per wavelength). `tests/suite/stack_kernel.rs` holds both to the exact trace.
 //!
 //! # Speed

@@ -25,7 +25,7 @@
 //! increasing and convex on [0, min n_k): Newton in f64, safeguarded by bisection, from the
 //! linear extrapolation of the two previous pixels' roots in the row (the row's first pixel
 //! starts from min n_k / 2, so a row's values do not depend on the thread that renders it),
-//! until the step's predicted error is below u/4 of p ([`solve_p`]). Each segment's direction is
+//! until the step's predicted error is below u/4 of p (`solve_p`). Each segment's direction is
 //! (p u ± q_k N)/n_k (u: the unit lateral direction), the Fresnel coefficients of each event
 //! come from the same cosines the tracer uses (cos θi = q1/n1, cos²θt = q2²/n2²,
 //! [`fresnel::fresnel_with_cos2_t`]), and each channel's field is carried through the events in
