@@ -3,7 +3,9 @@
 //! and the Airy plate (bounce count chosen from the tail bound). Throughput is in probe points.
 //! And the picture of the performance target: `fringe::output::render::render` of the amplitude-division
 //! scene (`figures/plate_amplitude_division.json`) at `vector` fidelity in white light with 81
-//! wavelengths, 300 × 300 pixels (throughput in pixels; the 900 × 900 target is 9× the work).
+//! wavelengths, 300 × 300 pixels (throughput in pixels; the 900 × 900 target is 9× the work):
+//! as `fringe render` does it (the parallel-stack kernel, `fringe::output::stack_kernel`) and
+//! with every pixel traced exactly (`render::render_with(.., PixelPath::Exact)`, `_exact`).
 //!
 //! And where a pixel of that picture goes (`pixel` group, one thread, the middle row of the
 //! 900 × 900 screen, 900 pixels): the exact trace of its arrivals (`render::arrivals_at`: plan
@@ -65,6 +67,14 @@ fn bench(c: &mut Criterion) {
     group.throughput(Throughput::Elements((w * h) as u64));
     group.bench_function("amplitude_division_300x300_81_vector", |b| {
         b.iter(|| black_box(render::render(black_box(&case), &req).expect("renders")))
+    });
+    group.bench_function("amplitude_division_300x300_81_vector_exact", |b| {
+        b.iter(|| {
+            black_box(
+                render::render_with(black_box(&case), &req, render::PixelPath::Exact)
+                    .expect("renders"),
+            )
+        })
     });
     group.finish();
     pixel_split(c, &case);

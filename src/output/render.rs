@@ -1,5 +1,6 @@
 //! Pictures of a case: every pixel of a screen traced exactly (the same paths, rays and
-//! accumulation core as `fringe check`), at one or more rungs of the fidelity ladder, in
+//! accumulation core as `fringe check`; for point sources over parallel planes the same rays
+//! from a per-pixel kernel held to that trace, below), at one or more rungs of the fidelity ladder, in
 //! monochrome (the case's own light) or in colour (white light on a wavelength grid, streamed
 //! into CIE XYZ).
 //!
@@ -26,13 +27,27 @@
 //!
 //! Rows run in parallel (rayon); the result does not depend on the thread count.
 //!
+//! # The parallel-stack kernel
+//!
+//! For point sources over unbounded parallel interfaces (with absorbing rectangular shields) at
+//! `vector` fidelity, non-dispersive, without spreading, the rays of a pixel come from
+//! [`crate::output::stack_kernel`] instead of the exact trace: the sequences' walks through the
+//! slabs are found once per picture and each pixel only solves the 1-D lateral equation
+//! (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels it cannot
+//! vouch for, and every other scene or shading, are traced exactly ([`PixelPath::Exact`]
+//! forces that everywhere). With 16 wavelengths or more, the kernel's pixels take their
+//! spectral sums from `output::beat_table` (one table read per beat term instead of
+//! one phasor per wavelength). `tests/suite/stack_kernel.rs` holds both to the exact trace.
+//!
 //! # Speed
 //!
 //! Profiled with `perf record` on `fringe render plate_amplitude_division --size 600x600
 //! --samples 81`: after the 1-D Snell start of the path solver, the skipping of sequences that
 //! cannot reach a pixel, the shared propagation of a source's channels and the beat terms, the
-//! profile is flat (solve, reachability test, beats and propagation each 9–15%); README
-//! "Measured numbers" has the timings.
+//! exact trace's profile is flat (solve, reachability test, beats and propagation each 9–15%).
+//! With the kernel (900×900, 81 wavelengths) `StackKernel::contributions` is ~3/4 of the CPU
+//! (about a third of that the lateral Newton), the PNG encoding ~6%; README "Measured numbers"
+//! has the timings.
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;
@@ -41,6 +56,8 @@ use crate::harness::case::build::{self, Built, GridGeometry, Overrides};
 use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
+use crate::output::beat_table::BeatTable;
+use crate::output::stack_kernel::{KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -216,6 +233,18 @@ pub struct Render {
     pub paths: usize,
     /// Wall time of the render (s).
     pub seconds: f64,
+    /// Pixels whose rays the parallel-stack kernel gave (the rest were traced exactly).
+    pub kernel_pixels: usize,
+}
+
+/// How the rays of a pixel are found.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PixelPath {
+    /// The parallel-stack kernel ([`crate::output::stack_kernel`]) for the pixels it vouches
+    /// for, where the scene and shadings are of its class; the exact trace everywhere else.
+    Auto,
+    /// Every pixel traced exactly ([`arrivals_at`]).
+    Exact,
 }
 
 /// A render request.
@@ -330,6 +359,10 @@ struct Context<'a> {
     shadings: &'a [Shading],
     /// Whether some shading needs the rays under the paper's rules.
     paper_rules: bool,
+    /// The parallel-stack kernel, where the scene and shadings are of its class.
+    kernel: Option<StackKernel>,
+    /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
+    table: Option<BeatTable>,
 }
 
 /// Per-thread scratch space.
@@ -339,20 +372,37 @@ struct Scratch {
     prepared: Vec<SpectralContribution>,
     /// One per shading.
     beats: Vec<Beats>,
+    kernel: KernelScratch,
 }
 
 impl Context<'_> {
     /// Adds Σ_i W_i I_i of every shading at `point` into `out` (one [f64; 3] per shading);
-    /// returns the number of arrivals traced.
+    /// returns the number of arrivals and whether the kernel gave them.
     fn pixel(
         &self,
         point: DVec3,
         observer: &Observer,
         s: &mut Scratch,
         out: &mut [[f64; 3]],
-    ) -> usize {
+    ) -> (usize, bool) {
         let scene = &self.built.scene;
         s.beats.resize_with(self.shadings.len(), Beats::default);
+        // The kernel serves only `vector` shadings of a non-dispersive scene (`render_with`).
+        if let Some(k) = &self.kernel
+            && k.contributions(point, observer, &mut s.kernel, &mut s.prepared)
+        {
+            for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
+                beats.set(&s.prepared);
+                let w = match self.table.as_ref().and_then(|t| t.weighted_sum(beats)) {
+                    Some(w) => w,
+                    None => beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc),
+                };
+                for c in 0..3 {
+                    sum[c] += w[c];
+                }
+            }
+            return (s.prepared.len(), true);
+        }
         if !self.dispersive {
             let optics = &self.optics[0];
             let arr = arrivals_at(
@@ -374,7 +424,7 @@ impl Context<'_> {
                     sum[c] += w[c];
                 }
             }
-            arr.len()
+            (arr.len(), false)
         } else {
             let mut paths = 0;
             for (j, &(lambda, w)) in self.samples.iter().enumerate() {
@@ -398,7 +448,7 @@ impl Context<'_> {
                     }
                 }
             }
-            paths
+            (paths, false)
         }
     }
 }
@@ -435,8 +485,13 @@ pub fn memory_estimate(screen: &Screen, shadings: usize) -> u64 {
     sums + picture + (64 << 20)
 }
 
-/// Render `case` as requested.
+/// Render `case` as requested ([`PixelPath::Auto`]).
 pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
+    render_with(case, req, PixelPath::Auto)
+}
+
+/// Render `case` as requested, the pixels' rays found as `path` says.
+pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render, String> {
     let t0 = Instant::now();
     if req.shadings.is_empty() {
         return Err("render: no shading (fidelity level) requested".into());
@@ -486,7 +541,27 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
         optics.push(o);
     }
+    let kernel = if path == PixelPath::Auto
+        && !dispersive
+        && req
+            .shadings
+            .iter()
+            .all(|s| *s == Shading::Level(Fidelity::Vector))
+    {
+        StackKernel::new(&built.scene, &optics[0], &plans[0], &settings)
+    } else {
+        None
+    };
+    let table = if kernel.is_some() && samples.len() >= 16 {
+        let l: Vec<f64> = samples.iter().map(|s| s.0).collect();
+        let w: Vec<[f64; 3]> = samples.iter().map(|s| s.1).collect();
+        BeatTable::new(&l, &w)
+    } else {
+        None
+    };
     let ctx = Context {
+        kernel,
+        table,
         built: &built,
         settings: &settings,
         lambdas: samples.iter().map(|s| s.0).collect(),
@@ -500,26 +575,30 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
     };
     let bar = progress_bar(g.rows as u64, req.progress);
     let ns = req.shadings.len();
-    let rows: Vec<(Vec<[f64; 3]>, usize)> = (0..g.rows)
+    let rows: Vec<(Vec<[f64; 3]>, usize, usize)> = (0..g.rows)
         .into_par_iter()
         .map_init(Scratch::default, |s, row| {
             let mut out = vec![[0.0; 3]; g.columns * ns];
-            let mut paths = 0;
+            let (mut paths, mut by_kernel) = (0, 0);
+            s.kernel.new_row();
             for col in 0..g.columns {
                 let p = g.position(col, row);
-                paths += ctx.pixel(
+                let (n, k) = ctx.pixel(
                     p,
                     &req.screen.observer(p),
                     s,
                     &mut out[col * ns..(col + 1) * ns],
                 );
+                paths += n;
+                by_kernel += usize::from(k);
             }
             bar.inc(1);
-            (out, paths)
+            (out, paths, by_kernel)
         })
         .collect();
     bar.finish_and_clear();
     let paths = rows.iter().map(|r| r.1).sum();
+    let kernel_pixels = rows.iter().map(|r| r.2).sum();
     let images = req
         .shadings
         .iter()
@@ -527,7 +606,7 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         .map(|(k, sh)| {
             let pixels = rows
                 .iter()
-                .flat_map(|(r, _)| (0..g.columns).map(move |col| r[col * ns + k]));
+                .flat_map(|(r, _, _)| (0..g.columns).map(move |col| r[col * ns + k]));
             Image {
                 shading: *sh,
                 width: g.columns,
@@ -546,6 +625,7 @@ pub fn render(case: &Case, req: &Request) -> Result<Render, String> {
         dispersive,
         paths,
         seconds: t0.elapsed().as_secs_f64(),
+        kernel_pixels,
     })
 }
 
@@ -666,7 +746,8 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
         },
     )?;
     let mut lines = vec![format!(
-        "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) traced in {:.2} s",
+        "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) in {:.2} s ({} pixel(s) by \
+         the parallel-stack kernel, the rest traced exactly)",
         case.spec.name,
         g.columns,
         g.rows,
@@ -677,7 +758,8 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
             " (non-dispersive: paths solved once per pixel)"
         },
         r.paths,
-        r.seconds
+        r.seconds,
+        r.kernel_pixels
     )];
     let base = cmd.output.clone().unwrap_or_else(|| {
         std::path::Path::new("reports")

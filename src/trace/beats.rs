@@ -144,6 +144,20 @@ impl Beats {
         }
     }
 
+    /// The paired form: the constant Σ_k |E_k|² and each beat term as (Δs (m), λ-independent
+    /// phase (cycles), amplitude b), the intensity at λ being the constant plus
+    /// Σ_t Re[b_t e^{2πi(Δs_t/λ + e_t)}]; `None` when the accumulator evaluates the rays.
+    pub fn paired_terms(&self) -> Option<(f64, impl Iterator<Item = (f64, f64, Complex64)> + '_)> {
+        self.paired.then(|| {
+            (
+                self.constant,
+                self.terms
+                    .iter()
+                    .map(|t| (t.delta_s_m, t.extra_cycles, t.amplitude)),
+            )
+        })
+    }
+
     /// Number of beat terms, or `None` when the rays are evaluated by the accumulator.
     pub fn term_count(&self) -> Option<usize> {
         self.paired.then_some(self.terms.len())

@@ -40,6 +40,7 @@ mod round_trips;
 mod spectrum_batch;
 mod stability;
 mod stability_report;
+mod stack_kernel;
 mod tradeoff;
 mod trail;
 mod truth;

@@ -1,0 +1,677 @@
+//! A per-pixel kernel for one class of scene: point sources over a stack of parallel,
+//! unbounded dielectric interfaces (plates, films, interfaces), with absorbing rectangular
+//! shields, seen at `vector` fidelity without geometric spreading. For that class the exact
+//! trace ([`crate::trace::arrivals_with`]) is replaced, pixel by pixel, by what it computes in
+//! closed form; where the kernel cannot vouch for a pixel it says so and the render traces that
+//! pixel exactly.
+//!
+//! # What is found once per picture
+//!
+//! The planes are sorted by their height z along the common normal N; the slabs between them
+//! each hold one index. Every candidate sequence of the render's plan is walked through the
+//! slabs once: the slab and direction (along ±N) of each segment, the heights of the segments
+//! between two events (per slab), the indices n1, n2 of each event and whether it keeps
+//! coherence. A sequence the walk cannot follow (an event on a plane the ray does not meet
+//! next) never arrives; the exact solver fails it too.
+//!
+//! # What is solved per pixel
+//!
+//! With D the lateral distance from the source to the pixel and H_k the total height the path
+//! crosses in slab k (the first and last segments depend on the pixel), Snell's invariant
+//! p = n_k sin θ_k is the root of the lateral equation (docs/PHYSICS.md §8)
+//!
+//!   F(p) = Σ_k H_k p / q_k(p) − D = 0,   q_k(p) = √(n_k² − p²) = n_k cos θ_k,
+//!
+//! increasing and convex on [0, min n_k): Newton in f64, safeguarded by bisection, from the
+//! linear extrapolation of the two previous pixels' roots in the row (the row's first pixel
+//! starts from min n_k / 2, so a row's values do not depend on the thread that renders it),
+//! until the step's predicted error is below u/4 of p (`solve_p`). Each segment's direction is
+//! (p u ± q_k N)/n_k (u: the unit lateral direction), the Fresnel coefficients of each event
+//! come from the same cosines the tracer uses (cos θi = q1/n1, cos²θt = q2²/n2²,
+//! [`fresnel::fresnel_with_cos2_t`]), and each channel's field is carried through the events in
+//! the tracer's own frames (s = the plane of incidence's normal, p_i = d_i × s, the child's
+//! frame (s, d_o × s); [`crate::optics::interaction`]).
+//!
+//! # Optical path differences
+//!
+//! At the root, the optical path is S(p) = p D + Σ_k H_k q_k(p) (n²/q = p²/q + q), stationary
+//! in p, so a rounded root moves S only to second order. The beat terms need differences of
+//! two beams i, j of one source, each ~ a metre-scale path: formed as
+//!
+//!   S_j − S_i = (p_j − p_i) [D − Σ_k H_ik (p_i + p_j)/(q_k(p_i) + q_k(p_j))]
+//!               + Σ_k (H_jk − H_ik) q_k(p_j),
+//!
+//! (q(p_j) − q(p_i) = (p_i² − p_j²)/(q(p_i) + q(p_j))) nothing cancels but the bracket, whose
+//! rounding u·D is multiplied by the small p_j − p_i, and the heights of slabs both beams cross
+//! the same way (the air legs of a plate's two beams) are bitwise equal, so H_jk − H_ik = 0
+//! exactly. The rounding of Δ is then ~u·(|Δ| + |p_j − p_i| D) instead of ~u·S.
+//!
+//! # When a pixel goes to the exact trace
+//!
+//! The kernel answers `None` (the render then traces the pixel exactly) where its verdicts
+//! would hang on a rounding: a pixel or source within `margin` (1e-9 of the scene scale) of a
+//! plane, a pixel straight above the source (p < 1e-9: no plane of incidence), a refraction or
+//! reflection within 1e-6 (in cos²) of its critical angle (beyond it the tracer's frustrated
+//! total reflection and its tunnelling take over), a segment crossing a shield's plane within
+//! `margin` of the shield's edge or of a segment end, an optical path within 1e-9 of the
+//! source's coherence length, or Newton not converging in 100 steps.
+
+use crate::harness::case::build;
+use crate::harness::case::spec::Observer;
+use crate::optics::fresnel;
+use crate::optics::interaction::SurfaceOptics;
+use crate::optics::ray::{Field3, INCOHERENT};
+use crate::scene::geometry::{Extent, Plane, Rect};
+use crate::scene::source::{Channel, ChannelField, Emitter, field_reference};
+use crate::scene::{Scene, SceneOptics, SurfaceKind};
+use crate::trace::beats::SpectralContribution;
+use crate::trace::path::EventKind;
+use crate::trace::{Plan, TraceSettings};
+use glam::DVec3;
+use num_complex::Complex64;
+
+/// One event of a compiled sequence.
+#[derive(Clone, Copy, Debug)]
+struct KernelEvent {
+    reflect: bool,
+    /// The surface's own unit normal (its s vector is formed from it, as the tracer does).
+    normal: DVec3,
+    /// Index on the arriving side and on the other side.
+    n1: f64,
+    n2: f64,
+    /// Whether the followed child keeps the coherence id.
+    keeps: bool,
+    /// Height of the plane along the kernel's N (m).
+    z: f64,
+}
+
+/// A candidate sequence walked through the slabs.
+#[derive(Clone, Debug)]
+struct Compiled {
+    events: Vec<KernelEvent>,
+    /// Slab of each segment (`events.len() + 1`).
+    seg_slab: Vec<usize>,
+    /// Direction of each segment along N (+1 or −1).
+    seg_sign: Vec<f64>,
+    /// Heights of the segments between two events, summed per slab (m).
+    mid: Vec<f64>,
+    /// The smallest index of the slabs crossed (p stays below it).
+    p_max: f64,
+    /// Whether every event keeps coherence.
+    keeps: bool,
+}
+
+/// An absorbing rectangle.
+#[derive(Clone, Debug)]
+struct Shield {
+    plane: Plane,
+    u: DVec3,
+    v: DVec3,
+    rect: Rect,
+}
+
+#[derive(Clone, Debug)]
+struct KernelSource {
+    position: DVec3,
+    z: f64,
+    slab: usize,
+    channels: Vec<Channel>,
+    /// Per channel, a linear channel's (reference, cos, sin of its angle): its launch field
+    /// as [`Channel::launch`] forms it, the angle's cosine and sine taken once.
+    linear: Vec<Option<(DVec3, f64, f64)>>,
+    coherence_length_m: f64,
+    /// One per candidate sequence of the plan, in its order; `None`: never arrives.
+    seqs: Vec<Option<Compiled>>,
+}
+
+/// The kernel of one picture (module docs).
+#[derive(Clone, Debug)]
+pub(crate) struct StackKernel {
+    normal: DVec3,
+    origin: DVec3,
+    /// Plane heights along `normal`, ascending.
+    plane_z: Vec<f64>,
+    /// Index of slab k (below plane k; the last one above every plane).
+    slab_n: Vec<f64>,
+    sources: Vec<KernelSource>,
+    shields: Vec<Shield>,
+    margin: f64,
+}
+
+/// Per-thread scratch space of the kernel.
+#[derive(Clone, Debug, Default)]
+pub(crate) struct KernelScratch {
+    /// The last two roots per (source, sequence) in the current row (0: none yet): the next
+    /// pixel starts from their linear extrapolation.
+    guess: Vec<[f64; 2]>,
+    h: Vec<f64>,
+    ref_h: Vec<f64>,
+    dirs: Vec<DVec3>,
+    /// Per event: s, d_i × s, d_o × s, c_s, c_p.
+    frames: Vec<(DVec3, DVec3, DVec3, Complex64, Complex64)>,
+}
+
+impl KernelScratch {
+    /// Forget the roots of the previous row: each row then starts alike whichever thread
+    /// renders it, so the picture does not depend on the thread count.
+    pub(crate) fn new_row(&mut self) {
+        self.guess.fill([0.0; 2]);
+    }
+}
+
+/// √((n − p)(n + p)) = n cos θ.
+#[inline]
+fn q_of(n: f64, p: f64) -> f64 {
+    ((n - p) * (n + p)).sqrt()
+}
+
+/// The root of the lateral equation (module docs), or `None` without convergence.
+///
+/// Newton's error after a step δ is ≈ (F''/2F') δ² (F' = Σ H n²/q³, F'' = Σ 3 H n² p/q⁵, so
+/// F''/2F' ≤ 1.5 p / min q²): once that is below u/4 of p the step is taken and the root
+/// returned without another evaluation; a step below 4 ulp of p ends it too.
+fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> {
+    let (mut lo, mut hi) = (0.0, p_max);
+    let mut p = if guess > 0.0 && guess < p_max {
+        guess
+    } else {
+        0.5 * p_max
+    };
+    for _ in 0..100 {
+        let (mut f, mut df) = (-d, 0.0);
+        let mut q2_min = f64::INFINITY;
+        for (&hk, &nk) in h.iter().zip(n) {
+            if hk != 0.0 {
+                let q2 = (nk - p) * (nk + p);
+                let q = q2.sqrt();
+                f += hk * p / q;
+                df += hk * nk * nk / (q2 * q);
+                q2_min = q2_min.min(q2);
+            }
+        }
+        if f > 0.0 {
+            hi = p;
+        } else if f < 0.0 {
+            lo = p;
+        } else {
+            return Some(p);
+        }
+        let step = f / df;
+        let mut next = p - step;
+        if !(next > lo && next < hi) {
+            next = 0.5 * (lo + hi);
+        } else if 1.5 * p / q2_min * step * step <= 0.25 * f64::EPSILON * p {
+            return Some(next);
+        }
+        if (next - p).abs() <= 4.0 * f64::EPSILON * p {
+            return Some(next);
+        }
+        p = next;
+    }
+    None
+}
+
+fn dot(e: &Field3, v: DVec3) -> Complex64 {
+    e[0] * v.x + e[1] * v.y + e[2] * v.z
+}
+
+impl StackKernel {
+    /// The kernel of a picture, or `None` when the scene is not of its class (module docs):
+    /// point sources in distinct coherence groups, every non-opaque surface an unbounded
+    /// dielectric interface parallel to the others (normals bitwise ±), no two at one height,
+    /// every opaque surface a rectangle without apertures, consistent indices between faces,
+    /// no spreading, no tunnelling event in the plan.
+    pub(crate) fn new(
+        scene: &Scene,
+        optics: &SceneOptics,
+        plan: &Plan,
+        settings: &TraceSettings,
+    ) -> Option<StackKernel> {
+        if settings.solve.spreading {
+            return None;
+        }
+        let mut normal: Option<DVec3> = None;
+        let mut planes: Vec<(f64, usize)> = Vec::new();
+        let mut shields = Vec::new();
+        let mut scale: f64 = 1e-3;
+        for (i, s) in scene.surfaces.iter().enumerate() {
+            scale = scale.max(s.plane.point.abs().max_element());
+            match (&s.kind, &s.extent) {
+                (SurfaceKind::Interface { .. }, Extent::Unbounded) => {
+                    let n = s.plane.normal;
+                    let nn = *normal.get_or_insert(n);
+                    if n != nn && n != -nn {
+                        return None;
+                    }
+                    planes.push((0.0, i));
+                }
+                (SurfaceKind::Opaque { apertures }, Extent::Rect { u, v, rect })
+                    if apertures.is_empty() =>
+                {
+                    shields.push(Shield {
+                        plane: s.plane,
+                        u: *u,
+                        v: *v,
+                        rect: *rect,
+                    });
+                }
+                _ => return None,
+            }
+        }
+        let normal = normal?;
+        let origin = scene.surfaces[planes[0].1].plane.point;
+        for pl in &mut planes {
+            pl.0 = normal.dot(scene.surfaces[pl.1].plane.point - origin);
+        }
+        planes.sort_by(|a, b| a.0.total_cmp(&b.0));
+        if planes.windows(2).any(|w| w[0].0 == w[1].0) {
+            return None;
+        }
+        // Slab indices: slab k lies below plane k, slab m above every plane.
+        let m = planes.len();
+        let mut slab_n = vec![f64::NAN; m + 1];
+        for (j, &(_, i)) in planes.iter().enumerate() {
+            let Some(SurfaceOptics::Dielectric { n_front, n_back }) = optics.surfaces[i] else {
+                return None;
+            };
+            let up_front = scene.surfaces[i].plane.normal == normal;
+            let (above, below) = if up_front {
+                (n_front, n_back)
+            } else {
+                (n_back, n_front)
+            };
+            for (k, n) in [(j, below), (j + 1, above)] {
+                if slab_n[k].is_nan() {
+                    slab_n[k] = n;
+                } else if slab_n[k] != n {
+                    return None;
+                }
+            }
+        }
+        let plane_z: Vec<f64> = planes.iter().map(|p| p.0).collect();
+        let plane_of = |surface: usize| planes.iter().position(|p| p.1 == surface);
+        let mut sources = Vec::new();
+        let mut groups = Vec::new();
+        for (si, src) in scene.sources.iter().enumerate() {
+            let Emitter::Point { position } = src.emitter else {
+                return None;
+            };
+            if groups.contains(&src.coherence_group) {
+                return None;
+            }
+            groups.push(src.coherence_group);
+            scale = scale.max(position.abs().max_element());
+            let z = normal.dot(position - origin);
+            let slab = plane_z.iter().filter(|&&pz| pz < z).count();
+            if plane_z.contains(&z) || slab_n[slab] != optics.ambient_index {
+                return None;
+            }
+            let mut seqs = Vec::new();
+            let mut tunnel = false;
+            plan.sequences[si].for_each(|seq| {
+                tunnel |= seq.iter().any(|e| e.kind == EventKind::Tunnel);
+                seqs.push(Self::compile(
+                    scene, &planes, &slab_n, seq, slab, z, &plane_of,
+                ));
+            });
+            if tunnel {
+                return None;
+            }
+            let channels = src.channels();
+            sources.push(KernelSource {
+                position,
+                z,
+                slab,
+                linear: channels
+                    .iter()
+                    .map(|ch| match ch.field {
+                        ChannelField::Linear {
+                            reference,
+                            angle_rad,
+                        } => Some((reference, angle_rad.cos(), angle_rad.sin())),
+                        ChannelField::Dipole { .. } => None,
+                    })
+                    .collect(),
+                channels,
+                coherence_length_m: src.coherence_length_m,
+                seqs,
+            });
+        }
+        Some(StackKernel {
+            normal,
+            origin,
+            plane_z,
+            slab_n,
+            sources,
+            shields,
+            margin: 1e-9 * scale,
+        })
+    }
+
+    /// Walk `seq` from slab `slab` (source height `z`) through the planes; `None` where the
+    /// walk meets a plane the sequence does not name (or names a surface that is no plane).
+    fn compile(
+        scene: &Scene,
+        planes: &[(f64, usize)],
+        slab_n: &[f64],
+        seq: &[crate::trace::path::Event],
+        slab: usize,
+        z: f64,
+        plane_of: &dyn Fn(usize) -> Option<usize>,
+    ) -> Option<Compiled> {
+        let mut k = slab;
+        let mut sign = 0.0;
+        let mut prev_z = z;
+        let mut c = Compiled {
+            events: Vec::new(),
+            seg_slab: vec![slab],
+            seg_sign: Vec::new(),
+            mid: vec![0.0; slab_n.len()],
+            p_max: slab_n[slab],
+            keeps: true,
+        };
+        for (i, ev) in seq.iter().enumerate() {
+            let j = plane_of(ev.surface)?;
+            let up = if j == k {
+                true
+            } else if j + 1 == k {
+                false
+            } else {
+                return None;
+            };
+            let s = if up { 1.0 } else { -1.0 };
+            if i == 0 {
+                sign = s;
+            } else if s != sign {
+                return None;
+            } else {
+                c.mid[k] += (planes[j].0 - prev_z).abs();
+            }
+            c.seg_sign.push(s);
+            let other = if up { k + 1 } else { k - 1 };
+            let surf = &scene.surfaces[ev.surface];
+            let reflect = match ev.kind {
+                EventKind::Reflect => true,
+                EventKind::Refract => false,
+                EventKind::Tunnel => return None,
+            };
+            let rules = surf.coherence();
+            c.events.push(KernelEvent {
+                reflect,
+                normal: surf.plane.normal,
+                n1: slab_n[k],
+                n2: slab_n[other],
+                keeps: if reflect {
+                    rules.reflected_keeps
+                } else {
+                    rules.refracted_keeps
+                },
+                z: planes[j].0,
+            });
+            if reflect {
+                sign = -sign;
+            } else {
+                k = other;
+            }
+            prev_z = planes[j].0;
+            c.seg_slab.push(k);
+            c.p_max = c.p_max.min(slab_n[k]);
+        }
+        // The last segment's direction (the first one's for a direct path is the pixel's).
+        c.seg_sign.push(sign);
+        c.keeps = c.events.iter().all(|e| e.keeps);
+        Some(c)
+    }
+
+    /// The `vector` contributions of the rays reaching `point` (seen by `observer`), in the
+    /// exact trace's order, into `out` (phases split as [`SpectralContribution`] wants, Δs
+    /// relative to each source's first ray); `false` (with `out` undefined) where the pixel
+    /// must be traced exactly (module docs).
+    pub(crate) fn contributions(
+        &self,
+        point: DVec3,
+        observer: &Observer,
+        s: &mut KernelScratch,
+        out: &mut Vec<SpectralContribution>,
+    ) -> bool {
+        out.clear();
+        let nn = self.normal;
+        let ns = self.slab_n.len();
+        let zp = nn.dot(point - self.origin);
+        if self.plane_z.iter().any(|&z| (zp - z).abs() <= self.margin) {
+            return false;
+        }
+        let pix_slab = self.plane_z.iter().filter(|&&pz| pz < zp).count();
+        let total: usize = self.sources.iter().map(|src| src.seqs.len()).sum();
+        s.guess.resize(total, [0.0; 2]);
+        s.h.resize(ns, 0.0);
+        s.ref_h.resize(ns, 0.0);
+        let mut flat = 0;
+        for src in &self.sources {
+            let v = point - src.position;
+            let lat = v - v.dot(nn) * nn;
+            let d = lat.length();
+            if d <= self.margin {
+                return false;
+            }
+            let u = lat / d;
+            let mut reference: Option<f64> = None;
+            for (k, seq) in src.seqs.iter().enumerate() {
+                let idx = flat + k;
+                let Some(c) = seq else { continue };
+                if *c.seg_slab.last().unwrap() != pix_slab {
+                    continue;
+                }
+                // The heights crossed per slab: the middle segments, then the first, then the
+                // last (one order for every sequence, so equal legs give equal sums).
+                s.h.copy_from_slice(&c.mid);
+                let last = c.seg_slab.len() - 1;
+                let mut sign_last = c.seg_sign[last];
+                if c.events.is_empty() {
+                    let dz = zp - src.z;
+                    if dz.abs() <= self.margin {
+                        return false;
+                    }
+                    sign_last = dz.signum();
+                    s.h[src.slab] += dz.abs();
+                } else {
+                    s.h[c.seg_slab[0]] += (c.events[0].z - src.z).abs();
+                    s.h[c.seg_slab[last]] += (zp - c.events[last - 1].z).abs();
+                }
+                let [g1, g2] = s.guess[idx];
+                let start = if g2 > 0.0 { 2.0 * g1 - g2 } else { g1 };
+                let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, start) else {
+                    return false;
+                };
+                s.guess[idx] = [p, g1];
+                if p < 1e-9 {
+                    return false;
+                }
+                // Away from grazing in every slab crossed, and from every critical angle.
+                for (&hk, &nk) in s.h.iter().zip(&self.slab_n) {
+                    if hk != 0.0 && (nk - p) * (nk + p) <= 1e-6 * nk * nk {
+                        return false;
+                    }
+                }
+                // Directions of the segments.
+                s.dirs.clear();
+                for (i, &slab) in c.seg_slab.iter().enumerate() {
+                    let n = self.slab_n[slab];
+                    let sg = if i == last { sign_last } else { c.seg_sign[i] };
+                    s.dirs.push((p * u + (sg * q_of(n, p)) * nn) / n);
+                }
+                let d_last = s.dirs[last];
+                if !build::records(observer, d_last) {
+                    continue;
+                }
+                if !self.shields.is_empty() {
+                    match self.shielded(src, c, point, &s.dirs) {
+                        Some(true) => continue,
+                        Some(false) => {}
+                        None => return false,
+                    }
+                }
+                // Fresnel coefficients and frames of the events.
+                s.frames.clear();
+                for (i, ev) in c.events.iter().enumerate() {
+                    let q2_1 = (ev.n1 - p) * (ev.n1 + p);
+                    let q2_2 = (ev.n2 - p) * (ev.n2 + p);
+                    if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
+                        return false;
+                    }
+                    let cos_i = (q2_1.sqrt() / ev.n1).min(1.0);
+                    let f = if ev.n1 == ev.n2 {
+                        fresnel::fresnel(ev.n1, ev.n2, cos_i)
+                    } else {
+                        fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, q2_2 / (ev.n2 * ev.n2))
+                    };
+                    let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
+                    let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
+                        return false;
+                    };
+                    let (cs, cp) = if ev.reflect {
+                        (f.r_s, f.r_p)
+                    } else {
+                        (f.t_s, f.t_p)
+                    };
+                    s.frames.push((sv, d_i.cross(sv), d_o.cross(sv), cs, cp));
+                }
+                // The optical path (for the coherence-length rule) and Δs.
+                let mut path = p * d;
+                for (&hk, &nk) in s.h.iter().zip(&self.slab_n) {
+                    if hk != 0.0 {
+                        path += hk * q_of(nk, p);
+                    }
+                }
+                let delta = match reference {
+                    None => {
+                        reference = Some(p);
+                        s.ref_h.copy_from_slice(&s.h);
+                        0.0
+                    }
+                    Some(pr) => {
+                        let mut bracket = d;
+                        let mut extra = 0.0;
+                        for ((&hj, &hr), &nk) in s.h.iter().zip(&s.ref_h).zip(&self.slab_n) {
+                            if hr != 0.0 {
+                                bracket -= hr * (pr + p) / (q_of(nk, pr) + q_of(nk, p));
+                            }
+                            let dh = hj - hr;
+                            if dh != 0.0 {
+                                extra += dh * q_of(nk, p);
+                            }
+                        }
+                        (p - pr) * bracket + extra
+                    }
+                };
+                let lost_length = path > src.coherence_length_m;
+                if (path - src.coherence_length_m).abs() <= 1e-9 * path {
+                    return false;
+                }
+                let d0 = s.dirs[0];
+                let mut shared: Option<(DVec3, DVec3)> = None;
+                for (ch, linear) in src.channels.iter().zip(&src.linear) {
+                    let (e, amp) = match *linear {
+                        Some((reference, cos, sin)) => {
+                            let e_ref = match shared {
+                                Some((r, e)) if r == reference => e,
+                                _ => {
+                                    let e = field_reference(reference, d0);
+                                    shared = Some((reference, e));
+                                    e
+                                }
+                            };
+                            (cos * e_ref + sin * d0.cross(e_ref), 1.0)
+                        }
+                        None => ch.launch(d0),
+                    };
+                    let a = amp * ch.intensity.sqrt();
+                    let mut f: Field3 = [
+                        Complex64::from(e.x * a),
+                        Complex64::from(e.y * a),
+                        Complex64::from(e.z * a),
+                    ];
+                    for &(sv, pi, po, cs, cp) in &s.frames {
+                        let a_s = cs * dot(&f, sv);
+                        let a_p = cp * dot(&f, pi);
+                        f = [
+                            a_s * sv.x + a_p * po.x,
+                            a_s * sv.y + a_p * po.y,
+                            a_s * sv.z + a_p * po.z,
+                        ];
+                    }
+                    let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
+                    out.push(SpectralContribution {
+                        coherence_id: if coherent {
+                            ch.coherence_id
+                        } else {
+                            INCOHERENT
+                        },
+                        delta_s_m: delta,
+                        extra_cycles: 0.0,
+                        field: f,
+                    });
+                }
+            }
+            flat += src.seqs.len();
+        }
+        true
+    }
+
+    /// Whether a shield stops the path from `src` to `point` along `dirs` (`Some(true)`), lets it
+    /// pass (`Some(false)`), or the verdict is within `margin` of an edge (`None`).
+    fn shielded(
+        &self,
+        src: &KernelSource,
+        c: &Compiled,
+        point: DVec3,
+        dirs: &[DVec3],
+    ) -> Option<bool> {
+        let nn = self.normal;
+        let last = c.seg_slab.len() - 1;
+        let mut a = src.position;
+        let mut za = src.z;
+        for (i, &d) in dirs.iter().enumerate().take(last + 1) {
+            let b = if i == last {
+                point
+            } else {
+                let zb = c.events[i].z;
+                // Along d to height zb.
+                let t = (zb - za) / d.dot(nn);
+                let b = a + t * d;
+                za = zb;
+                b
+            };
+            let ab = b - a;
+            for sh in &self.shields {
+                let den = ab.dot(sh.plane.normal);
+                if den == 0.0 {
+                    continue;
+                }
+                let t = (sh.plane.point - a).dot(sh.plane.normal) / den;
+                if !(-0.5..=1.5).contains(&t) {
+                    continue;
+                }
+                let tm = self.margin / ab.length();
+                if t < -tm || t > 1.0 + tm {
+                    continue;
+                }
+                if t.abs() <= tm || (t - 1.0).abs() <= tm {
+                    return None;
+                }
+                let x = a + t * ab;
+                let uv = Extent::uv(sh.u, sh.v, &sh.plane, x);
+                let outside = ((uv[0] - sh.rect.center_uv[0]).abs() - sh.rect.half_width_m)
+                    .max((uv[1] - sh.rect.center_uv[1]).abs() - sh.rect.half_height_m);
+                if outside.abs() <= self.margin {
+                    return None;
+                }
+                if outside < 0.0 {
+                    return Some(true);
+                }
+            }
+            a = b;
+        }
+        Some(false)
+    }
+}
