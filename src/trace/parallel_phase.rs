@@ -44,6 +44,8 @@ pub(crate) struct PlaneWavePhase<'a> {
     reference_point: DVec3,
     /// r_t, the far-field wavefront's reference point (m).
     reference: DVec3,
+    /// Per surface, the signed distance of r_pw from its plane (m), formed once.
+    from_reference_point: Vec<DoubleDouble>,
 }
 
 /// Φ of a path's beginning (module docs, without its last two terms), after its last event.
@@ -76,10 +78,16 @@ impl<'a> PlaneWavePhase<'a> {
         let Target::Direction { reference, .. } = *target else {
             return None;
         };
+        let from_reference_point = scene
+            .surfaces
+            .iter()
+            .map(|s| s.plane.signed_distance_dd(reference_point))
+            .collect();
         Some(PlaneWavePhase {
             scene,
             reference_point,
             reference,
+            from_reference_point,
         })
     }
 
@@ -102,7 +110,11 @@ impl<'a> PlaneWavePhase<'a> {
     /// its normal is ±N̂); `None` where the plane is off the line of normals.
     fn height(&self, normal: DVec3, surface: usize, r: DVec3) -> Option<DoubleDouble> {
         let plane = &self.scene.surfaces[surface].plane;
-        let sd = plane.signed_distance_dd(r);
+        let sd = if r == self.reference_point {
+            self.from_reference_point[surface]
+        } else {
+            plane.signed_distance_dd(r)
+        };
         if plane.normal == normal {
             Some(-sd)
         } else if plane.normal == -normal {
