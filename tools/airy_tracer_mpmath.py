@@ -1,7 +1,8 @@
 #!/usr/bin/env python3
 """50-digit values of the fuzz-found Airy scenes where the tracer was wrong
 (tests/suite/truth_airy_tracer.rs; `fringe fuzz --family airy --count 300 --seed 1`, scenes
-114, 159, 175, 291, shrunk into tests/fuzz_found/).
+114, 159, 175, 291, shrunk into tests/fuzz_found/; `fringe fuzz --seed 3`, airy scenes 4968 and
+7540, shrunk).
 
 Each case file is evaluated from its own numbers, at every probe point, in 50-digit
 arithmetic, exactly as tools/precision_classes_mpmath.py evaluates its `airy` cases: the
@@ -29,6 +30,8 @@ CASES = [
     "fuzz_airy_s1_159",
     "fuzz_airy_s1_175",
     "fuzz_airy_s1_291",
+    "fuzz_airy_s3_4968",
+    "fuzz_airy_s3_7540",
 ]
 
 

@@ -72,6 +72,28 @@ fn a_reflected_thick_plate_near_brewster_keeps_the_phase_of_its_orders() {
     check("fuzz_airy_s1_291", 1e-12);
 }
 
+/// `fringe fuzz --count 10000 --seed 3` at 68b64b1 failed two rotated films in an ambient of
+/// n = 3 and n = 2 (no other family failed): #4968 (15.8 µm of n = 1.5, reflected at 27.57°,
+/// near the film's Brewster angle and 2.4° below the top face's critical angle) traced R
+/// 1.9e-11 off, #7540 (1 mm of n = 1.5 on a substrate, reflected near critical) 1.8e-10 off the
+/// closed form, both beyond the gate's derived band. Cause: the phases of the walked orders,
+/// summed from f64 segments whose hit points the rotation rounds; since every far-field
+/// arrival between parallel planes takes its optical path from Snell's invariant
+/// (`trace::parallel_phase`, docs/PHYSICS.md §8) #4968 traces 50 digits to 1e-12 and both
+/// scenes, as drawn, pass the gate.
+#[test]
+fn rotated_films_in_a_denser_ambient_keep_the_phases_of_their_orders() {
+    use fringe::harness::fuzz::Family;
+    check("fuzz_airy_s3_4968", 1e-12);
+    let truth = mpmath_values();
+    println!(
+        "fuzz_airy_s3_7540: traced vs 50 digits {:.3e} (its band includes the direction's \
+         rounding, ~1e-10)",
+        traced_error("fuzz_airy_s3_7540", &truth["fuzz_airy_s3_7540"])
+    );
+    crate::support::assert_drawn_scenes_pass([(Family::Airy, 3, 4968), (Family::Airy, 3, 7540)]);
+}
+
 /// The wavefront projection is the signed distance from the plane through `reference`
 /// perpendicular to d, whatever |d| (an f64 "unit" vector is unit only to ~1e-16): the same
 /// direction scaled exactly (by powers of two) gives the same distance, to double-double
