@@ -150,14 +150,15 @@ pub fn scalar_tail(weights: [f64; 2], one_minus_abs2: [f64; 2], cycles: f64) -> 
     let mu_a = 0.5 * q0.norm() * log_uk.exp() / -(lam0 - delta).exp_m1();
     let n_a = terms_for(mu_a, head.norm());
     let mut a_terms = vec![Complex64::default(); n_a];
-    let mut a_abs = head.norm();
+    let mut a_abs = (n_a as f64 + 16.0) * head.norm();
     for (j, t) in a_terms.iter_mut().enumerate() {
         let m = (j + 1) as f64;
         *t = beta_abs[j] * (m * log_uk).exp() * cdiv(q0, -cexpm1(m.mul_add(-delta, lam0), c));
-        a_abs += t.norm() * (1.0 + m * (log_u.abs() + 1.0));
+        // ln u_k to 4u (|ln u| + δ + 1) (ln u and δ each to a few u; K δ ≈ ln u), m times.
+        a_abs += t.norm() * (n_a as f64 + 16.0 + 4.0 * m * (log_u.abs() + delta + 1.0));
     }
     let region_a = w_maj.sqrt() * (head + accelerated(&a_terms));
-    let mut err = w_maj.sqrt() * (4.0 * mu_a * truncation(n_a) + (n_a as f64 + 16.0) * U * a_abs);
+    let mut err = w_maj.sqrt() * (4.0 * mu_a * truncation(n_a) + U * a_abs);
     let mut sum = region_a;
     if k_split > 1.0 {
         // Region 1 ≤ k < K about m: √w_m Σ_k r1^k (1 + Σ_j (−1)^{j−1}|β_j| u_k^{−j}),
@@ -170,14 +171,15 @@ pub fn scalar_tail(weights: [f64; 2], one_minus_abs2: [f64; 2], cycles: f64) -> 
         let mu_c = 0.5 * finite_geometric(n, lam1 + delta, 0.0, 0.0, log_u).norm();
         let n_c = terms_for(mu_c, head.norm());
         let mut b_terms = vec![Complex64::default(); n_c];
-        let mut b_abs = head.norm();
+        let mut b_abs = (n_c as f64 + 16.0) * head.norm();
         for (j, t) in b_terms.iter_mut().enumerate() {
             let m = (j + 1) as f64;
             *t = beta_abs[j] * finite_geometric(n, m.mul_add(delta, lam1), c, nc, m * log_u);
-            b_abs += t.norm() * (1.0 + m * (log_u.abs() + 1.0));
+            // ln u_k to 4u (|ln u| + δ + 1) (ln u and δ each to a few u; K δ ≈ ln u), m times.
+            b_abs += t.norm() * (n_c as f64 + 16.0 + 4.0 * m * (log_u.abs() + delta + 1.0));
         }
         sum += w_min.sqrt() * (head + accelerated(&b_terms));
-        err += w_min.sqrt() * (4.0 * mu_c * truncation(n_c) + (n_c as f64 + 16.0) * U * b_abs);
+        err += w_min.sqrt() * (4.0 * mu_c * truncation(n_c) + U * b_abs);
     }
     Some(
         ScalarTail {
