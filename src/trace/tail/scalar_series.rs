@@ -82,7 +82,7 @@ pub fn scalar_tail(weights: [f64; 2], one_minus_abs2: [f64; 2], cycles: f64) -> 
         return None;
     }
     for (w, d) in weights.iter().zip(one_minus_abs2) {
-        if *w > 0.0 && !(d >= MIN_ONE_MINUS_ABS2 && d <= 1.0) {
+        if *w > 0.0 && !(MIN_ONE_MINUS_ABS2..=1.0).contains(&d) {
             return None;
         }
     }
