@@ -28,9 +28,9 @@
 //! acceleration of Cohen, Rodriguez Villegas and Zagier (Exp. Math. 9 (2000), Algorithm 1):
 //! its terms are moments a_j = ∫_0^1 t^j dμ of a complex measure (|β_{j+1}| = (1/π) ∫_0^1 t^j
 //! t^{−1/2}(1 − t)^{1/2} dt, times Σ_k r^k v_k^{j+1} with 0 ≤ v_k ≤ 1), so n terms leave an
-//! error of at most 4 |μ| (3 + √8)^{−n}, |μ| ≤ ½ Σ_k |r|^k v_k. With n = 40 that is
-//! 1e-30 |μ|: below the rounding of the result while 1 − x ≥ 1e-14 (and within the returned
-//! bound always).
+//! error of at most 4 |μ| (3 + √8)^{−n}, |μ| ≤ ½ Σ_k |r|^k v_k (~1/(1 − x) near grazing
+//! incidence). n is chosen, 40 to 380, to make that at most 1e-18 of the region's first
+//! geometric series; the returned bound adds it to the rounding.
 
 use num_complex::Complex64;
 use std::f64::consts::TAU;
