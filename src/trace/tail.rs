@@ -23,6 +23,8 @@
 //! of internal reflections alternating between them followed only by refractions, and the
 //! sequence with one round trip fewer was traced too, with the same coherence id.
 
+pub mod scalar_series;
+
 use super::{Arrival, phase_cycles};
 use crate::accumulate::fidelity::Fidelity;
 use crate::optics::double_double::DoubleDouble;
@@ -40,8 +42,8 @@ use std::sync::Arc;
 /// Unit roundoff of f64.
 const U: f64 = f64::EPSILON / 2.0;
 
-/// A light whose field along one of s, p is below this fraction of the other is taken as pure
-/// s or p light by the scalar rungs (their tail is a geometric series only then).
+/// A light whose field along one of s, p is below this fraction of the other, and decays no
+/// slower, is taken as pure s or p light by the scalar rungs (`scalar_factor`).
 const PURE_POLARIZATION: f64 = 1e-15;
 
 /// One round trip between the faces under one coefficient model, per σ = (s, p).
@@ -171,27 +173,35 @@ impl TailClosure {
     }
 
     /// The scalar rungs' sum of orders N + 1, … as a factor on order N's scalar amplitude √I_N:
-    /// Σ_k |A_σ|^k e^{2πi k (ΔS/λ + j/2)} (j the denser-side reflections per round trip when
-    /// `jump`). A geometric series only for s or p light (|A_s| ≠ |A_p| otherwise): NaN for
-    /// mixed light (docs/PHYSICS.md §5a).
+    /// Σ_k √(w_s |A_s|^{2k} + w_p |A_p|^{2k}) e^{2πi k (ΔS/λ + j/2)}, w_σ = |e_σ|²/|e|² (j the
+    /// denser-side reflections per round trip when `jump`), docs/PHYSICS.md §5a eq. (T2). For s
+    /// or p light it is the geometric series of (T1) (as before, bit for bit, also where the
+    /// other component is below 1e-15 of it and decays no slower, so that its share of every
+    /// order stays below 1e-30); for mixed light it is [`scalar_series::scalar_tail`].
+    /// `close` refuses |A_σ| = 1, the only input without a finite sum (NaN then, unreachable).
     pub(crate) fn scalar_factor(&self, e: &Field3, jump: bool, lambda_m: f64) -> Complex64 {
         let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
         let (es, ep) = (dot(self.s).norm(), dot(self.p).norm());
-        let k = if ep <= PURE_POLARIZATION * es {
-            0
-        } else if es <= PURE_POLARIZATION * ep {
-            1
-        } else {
-            return Complex64::new(f64::NAN, f64::NAN);
-        };
-        let d = self.vector.one_minus_abs2[k];
+        let d = self.vector.one_minus_abs2;
         let mut c = self.cycles(lambda_m);
         if jump {
             c += 0.5 * (self.denser_per_round_trip % 2) as f64;
         }
-        let m = Complex64::from((1.0 - d).max(0.0).sqrt());
-        geometric_sum(m, d, c, self.dpsi(lambda_m))
-            .map_or(Complex64::new(f64::NAN, f64::NAN), |(f, _)| f)
+        let pure = if ep <= PURE_POLARIZATION * es && d[1] >= d[0] {
+            Some(0)
+        } else if es <= PURE_POLARIZATION * ep && d[0] >= d[1] {
+            Some(1)
+        } else {
+            None
+        };
+        let nan = Complex64::new(f64::NAN, f64::NAN);
+        match pure {
+            Some(k) => {
+                let m = Complex64::from((1.0 - d[k]).max(0.0).sqrt());
+                geometric_sum(m, d[k], c, self.dpsi(lambda_m)).map_or(nan, |(f, _)| f)
+            }
+            None => scalar_series::scalar_tail([es * es, ep * ep], d, c).map_or(nan, |t| t.sum),
+        }
     }
 }
 

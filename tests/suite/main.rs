@@ -37,6 +37,7 @@ mod precision_classes;
 mod render;
 mod renderer_models;
 mod round_trips;
+mod scalar_tail;
 mod spectrum_batch;
 mod stability;
 mod stability_report;
