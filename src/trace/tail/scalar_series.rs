@@ -40,7 +40,7 @@ const U: f64 = f64::EPSILON / 2.0;
 
 /// The smallest 1 − |A|² taken (with a positive weight): F ~ 1/(1 − |A|) stays far inside the
 /// f64 range. Physical round trips are many orders above it (1e-9 at cos θ = 1e-9).
-const MIN_ONE_MINUS_ABS2: f64 = 1e-300;
+pub const MIN_ONE_MINUS_ABS2: f64 = 1e-300;
 
 /// Fewest terms of the accelerated series (module docs): truncation ≤ 4 |μ| (3 + √8)^{−40}.
 const TERMS: usize = 40;
