@@ -111,6 +111,27 @@ fn settings(m: usize) -> TraceSettings {
     }
 }
 
+/// The spectrum `round_trips::spectrum` traces at the probe over `lambdas`, and its route.
+fn spectrum_of(
+    scene: &Scene,
+    target: &Target,
+    st: &TraceSettings,
+    lambdas: &[f64],
+) -> (Route, Vec<f64>) {
+    let mut out = vec![0.0; lambdas.len()];
+    let route = round_trips::spectrum(
+        scene,
+        &PROBES,
+        target,
+        st,
+        lambdas,
+        &mut Beats::default(),
+        &mut out,
+    )
+    .unwrap();
+    (route, out)
+}
+
 fn walk(scene: &Scene, lambda: f64, target: &Target, st: &TraceSettings) -> Vec<trace::Arrival> {
     let optics = scene.optics(lambda).unwrap();
     let plan = trace::plan(scene, &optics, &PROBES, &st.limits);
@@ -249,17 +270,7 @@ fn dispersive_spectrum_matches_airy_bk7() {
             transmitted,
         );
         assert!(!round_trips::non_dispersive(&scene));
-        let mut out = vec![0.0; lambdas.len()];
-        let route = round_trips::spectrum(
-            &scene,
-            &PROBES,
-            &target,
-            &st,
-            &lambdas,
-            &mut Beats::default(),
-            &mut out,
-        )
-        .unwrap();
+        let (route, out) = spectrum_of(&scene, &target, &st, &lambdas);
         assert_eq!(route, Route::RoundTrips);
         let mut worst = 0.0f64;
         for (&l, &i) in lambdas.iter().zip(&out) {
@@ -310,17 +321,7 @@ fn non_dispersive_spectrum_matches_airy() {
         Light::Unpolarized,
         None,
     );
-    let mut out = vec![0.0; lambdas.len()];
-    let route = round_trips::spectrum(
-        &scene,
-        &PROBES,
-        &target,
-        &settings(m),
-        &lambdas,
-        &mut Beats::default(),
-        &mut out,
-    )
-    .unwrap();
+    let (route, out) = spectrum_of(&scene, &target, &settings(m), &lambdas);
     assert_eq!(route, Route::RoundTrips);
     for (&l, &i) in lambdas.iter().zip(&out) {
         let airy = 0.5
@@ -486,17 +487,7 @@ fn dispersive_sweep_equals_per_wavelength_traces() {
                     let mid = scene.optics(lambdas[20]).unwrap();
                     let sweep = Sweep::new(&scene, &mid, &PROBES, &target, &st)
                         .unwrap_or_else(|e| panic!("{what}: sweep refused: {e}"));
-                    let mut out = vec![0.0; lambdas.len()];
-                    let route = round_trips::spectrum(
-                        &scene,
-                        &PROBES,
-                        &target,
-                        &st,
-                        &lambdas,
-                        &mut Beats::default(),
-                        &mut out,
-                    )
-                    .unwrap();
+                    let (route, out) = spectrum_of(&scene, &target, &st, &lambdas);
                     assert_eq!(route, Route::RoundTrips, "{what}");
                     let mut acc = Accumulator::new();
                     for (&l, &i) in lambdas.iter().zip(&out) {
@@ -561,17 +552,7 @@ fn dispersive_sweep_falls_back_across_a_critical_angle() {
     let sweep = Sweep::new(&scene, &at(400e-9), &PROBES, &target, &st).unwrap();
     assert!(sweep.intensity(&scene, 450e-9).unwrap().is_some());
     assert!(sweep.intensity(&scene, 700e-9).unwrap().is_none());
-    let mut out = vec![0.0; lambdas.len()];
-    let route = round_trips::spectrum(
-        &scene,
-        &PROBES,
-        &target,
-        &st,
-        &lambdas,
-        &mut Beats::default(),
-        &mut out,
-    )
-    .unwrap();
+    let (route, out) = spectrum_of(&scene, &target, &st, &lambdas);
     assert!(matches!(route, Route::GeneralWalk(_)), "route {route:?}");
     let mut acc = Accumulator::new();
     let mut by_round_trips = 0;
@@ -621,17 +602,7 @@ fn dispersive_sweep_refused_where_its_structure_does_not_hold() {
         let optics = scene.optics(600e-9).unwrap();
         let why = Sweep::new(scene, &optics, &PROBES, target, &st).unwrap_err();
         eprintln!("{what}: {why}");
-        let mut out = vec![0.0; lambdas.len()];
-        let route = round_trips::spectrum(
-            scene,
-            &PROBES,
-            target,
-            &st,
-            &lambdas,
-            &mut Beats::default(),
-            &mut out,
-        )
-        .unwrap();
+        let (route, out) = spectrum_of(scene, target, &st, &lambdas);
         assert_eq!(route, Route::RoundTrips, "{what}");
         let mut acc = Accumulator::new();
         for (&l, &i) in lambdas.iter().zip(&out) {
@@ -663,17 +634,7 @@ fn dispersive_sweep_refused_where_its_structure_does_not_hold() {
     .unwrap();
     assert!(sweep.intensity(&into_bk7, 600e-9).unwrap().is_some());
     assert!(sweep.intensity(&into_bk7, 550e-9).unwrap().is_none());
-    let mut out = vec![0.0; lambdas.len()];
-    round_trips::spectrum(
-        &into_bk7,
-        &PROBES,
-        &target_t,
-        &st,
-        &lambdas,
-        &mut Beats::default(),
-        &mut out,
-    )
-    .unwrap();
+    let (_, out) = spectrum_of(&into_bk7, &target_t, &st, &lambdas);
     let mut acc = Accumulator::new();
     for (&l, &i) in lambdas.iter().zip(&out) {
         let (rays, _) = round_trips::rays_or_walk(
@@ -741,17 +702,7 @@ fn dispersive_sweep_with_total_internal_reflection_inside() {
                 &st,
             )
             .unwrap_or_else(|e| panic!("{light:?}, m {m}: refused: {e}"));
-            let mut out = vec![0.0; lambdas.len()];
-            round_trips::spectrum(
-                &scene,
-                &PROBES,
-                &target,
-                &st,
-                &lambdas,
-                &mut Beats::default(),
-                &mut out,
-            )
-            .unwrap();
+            let (_, out) = spectrum_of(&scene, &target, &st, &lambdas);
             let mut acc = Accumulator::new();
             for (&l, &i) in lambdas.iter().zip(&out) {
                 let swept = sweep
