@@ -49,6 +49,23 @@ def airy(n1, n2, n3, d, c1, lam, pol):
     return R, T
 
 
+
+def airy_cut(n1, n2, n3, d, c1, lam, pol, orders):
+    """(R, T) of the orders a tracer cut at 2 `orders` + 1 internal reflections gives (the
+    budget of an Airy tail bound): T of the transmitted orders 0 … `orders` (order k: 2k
+    internal reflections), R of the top reflection and the reflected orders 1 … `orders` + 1
+    (order k: 2k − 1), each the geometric sum of `airy` above, cut."""
+    N1, N2, N3, D, C1, LAM = map(mp.mpf, (n1, n2, n3, d, c1, lam))
+    r12, t12, c2 = coeffs(N1, N2, C1, pol)
+    r21, t21, _ = coeffs(N2, N1, c2, pol)
+    r23, t23, c3 = coeffs(N2, N3, c2, pol)
+    e = mp.expjpi(4 * N2 * D * c2 / LAM)
+    h = mp.expjpi(2 * N2 * D * c2 / LAM)
+    s = sum((r21 * r23 * e) ** k for k in range(orders + 1))
+    R = abs(r12 + t12 * t21 * r23 * e * s) ** 2
+    T = N3 * mp.re(c3) / (N1 * C1) * abs(t12 * t23 * h * s) ** 2
+    return R, T
+
 def main():
     rng = random.Random(1130)
     print("n1,n2,n3,thickness_m,cos_theta_1,lambda_m,pol,reflectance,transmittance")

@@ -40,3 +40,8 @@ for name in CASES:
     case = json.load(open(os.path.join(FOUND, name + ".json")))
     for i, v in enumerate(airy_case(case)):
         print(f"{name},{i},{mp.nstr(v, 30)}")
+# #291 as its tail bound (airy_tail_epsilon 1e-12) asks the tracer for: 63 internal reflections,
+# the top reflection and reflected orders 1-32, `fuzz_airy_s1_291/orders_0_31`.
+case = json.load(open(os.path.join(FOUND, "fuzz_airy_s1_291.json")))
+for i, v in enumerate(airy_case(case, orders=31)):
+    print(f"fuzz_airy_s1_291/orders_0_31,{i},{mp.nstr(v, 30)}")

@@ -13,6 +13,8 @@ polarization angle). It is also evaluated with the direction normalized once
 more in binary64 (as the tracer's launch holds it); the script asserts the two agree to 1e-18
 relatively, so the value does not depend on that rounding.
 
+The two 7304 scenes are also given as the cut sum their tail bound asks for (orders 0-15).
+
 Run: python3 tools/grazing_brewster_mpmath.py > tests/data/grazing_brewster_mpmath.csv
 """
 import json
@@ -35,6 +37,7 @@ CASES = [
     "fuzz_airy_s1_7304_unrotated",
     "fuzz_airy_s2_7972",
 ]
+CUT = ["fuzz_airy_s1_7304", "fuzz_airy_s1_7304_p"]
 
 
 def main():
@@ -46,6 +49,12 @@ def main():
         for i, (v, w) in enumerate(zip(values, again)):
             assert abs(v - w) <= mp.mpf("1e-18") * abs(v), (name, i, v, w)
             print(f"{name},{i},{mp.nstr(v, 30)}")
+    # The transmitted orders 0-15 alone: the sum the case's tail bound (airy_tail_epsilon 1e-15)
+    # asks the tracer for (31 internal reflections), `<name>/orders_0_15`.
+    for name in CUT:
+        case = json.load(open(os.path.join(FOUND, name + ".json")))
+        for i, v in enumerate(airy_case(case, orders=15)):
+            print(f"{name}/orders_0_15,{i},{mp.nstr(v, 30)}")
 
 
 if __name__ == "__main__":

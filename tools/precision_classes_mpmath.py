@@ -25,7 +25,7 @@ import os
 
 import mpmath as mp
 
-from airy_mpmath import airy  # the Airy sum of tests/data/airy_mpmath.csv
+from airy_mpmath import airy, airy_cut  # the Airy sum of tests/data/airy_mpmath.csv
 
 mp.mp.dps = 50
 HERE = os.path.dirname(os.path.abspath(__file__))
@@ -56,10 +56,12 @@ def sweep_points(sw):
     return [sw["from"] + (sw["to"] - sw["from"]) * i / (n - 1) for i in range(n)]
 
 
-def airy_case(case, extra_normalizations=0):
+def airy_case(case, extra_normalizations=0, orders=None):
     """R or T of the case's film at every sweep point, 50 digits, for the direction as the case
     file writes it, renormalized `extra_normalizations` more times in f64 (as a tracer that
-    normalizes an already-unit direction holds it); linear or unpolarized light."""
+    normalizes an already-unit direction holds it); linear or unpolarized light. With `orders`,
+    the orders a tracer cut at 2 `orders` + 1 internal reflections gives alone (`airy_cut`: the
+    sum a tail bound asks for)."""
     sw = case["probe"]["sweep"]
     par = sw["parameter"]["incidence_angle_deg"]
     side = sw["observe"]["far_field"]["side"]
@@ -89,6 +91,9 @@ def airy_case(case, extra_normalizations=0):
         c1 = abs(dot) / mp.sqrt(sum(x * x for x in D) * sum(x * x for x in N))
         Rs, Ts = airy(n1, n2, n3, d, c1, lam, 0)
         Rp, Tp = airy(n1, n2, n3, d, c1, lam, 1)
+        if orders is not None:
+            Rs, Ts = airy_cut(n1, n2, n3, d, c1, lam, 0, orders)
+            Rp, Tp = airy_cut(n1, n2, n3, d, c1, lam, 1, orders)
         v = fs * Rs + (1 - fs) * Rp if side == "reflected" else fs * Ts + (1 - fs) * Tp
         out.append(v)
     return out
