@@ -33,13 +33,21 @@ def coeffs(na, nb, ca, pol):
     return r, t, cb
 
 
-def airy(n1, n2, n3, d, c1, lam, pol):
+def film(n1, n2, n3, d, c1, lam, pol):
+    """The film's coefficients in 50 digits: (r12, t12, t21, r21, r23, t23, c3, e, h), e the round
+    trip's phase factor and h the single pass's."""
     N1, N2, N3, D, C1, LAM = map(mp.mpf, (n1, n2, n3, d, c1, lam))
     r12, t12, c2 = coeffs(N1, N2, C1, pol)
     r21, t21, _ = coeffs(N2, N1, c2, pol)
     r23, t23, c3 = coeffs(N2, N3, c2, pol)
     e = mp.expjpi(4 * N2 * D * c2 / LAM)
     h = mp.expjpi(2 * N2 * D * c2 / LAM)
+    return r12, t12, t21, r21, r23, t23, c3, e, h
+
+
+def airy(n1, n2, n3, d, c1, lam, pol):
+    r12, t12, t21, r21, r23, t23, c3, e, h = film(n1, n2, n3, d, c1, lam, pol)
+    N1, N3, C1 = map(mp.mpf, (n1, n3, c1))
     den = 1 - r21 * r23 * e
     R = abs(r12 + t12 * t21 * r23 * e / den) ** 2
     if mp.im(c3) != 0 or c3 == 0:
@@ -49,22 +57,18 @@ def airy(n1, n2, n3, d, c1, lam, pol):
     return R, T
 
 
-
 def airy_cut(n1, n2, n3, d, c1, lam, pol, orders):
     """(R, T) of the orders a tracer cut at 2 `orders` + 1 internal reflections gives (the
     budget of an Airy tail bound): T of the transmitted orders 0 … `orders` (order k: 2k
     internal reflections), R of the top reflection and the reflected orders 1 … `orders` + 1
     (order k: 2k − 1), each the geometric sum of `airy` above, cut."""
-    N1, N2, N3, D, C1, LAM = map(mp.mpf, (n1, n2, n3, d, c1, lam))
-    r12, t12, c2 = coeffs(N1, N2, C1, pol)
-    r21, t21, _ = coeffs(N2, N1, c2, pol)
-    r23, t23, c3 = coeffs(N2, N3, c2, pol)
-    e = mp.expjpi(4 * N2 * D * c2 / LAM)
-    h = mp.expjpi(2 * N2 * D * c2 / LAM)
+    r12, t12, t21, r21, r23, t23, c3, e, h = film(n1, n2, n3, d, c1, lam, pol)
+    N1, N3, C1 = map(mp.mpf, (n1, n3, c1))
     s = sum((r21 * r23 * e) ** k for k in range(orders + 1))
     R = abs(r12 + t12 * t21 * r23 * e * s) ** 2
     T = N3 * mp.re(c3) / (N1 * C1) * abs(t12 * t23 * h * s) ** 2
     return R, T
+
 
 def main():
     rng = random.Random(1130)

@@ -115,34 +115,10 @@ fn a_grazing_absentee_film_reflects_as_50_digits() {
 /// docs/PHYSICS.md §8): `fringe check` passes the case, rightly.
 #[test]
 fn a_rotated_grazing_film_transmits_the_orders_its_tail_bound_asks_for() {
-    use fringe::harness::case::{build, load, run};
     let truth = mpmath_profiles("grazing_brewster_mpmath.csv");
-    let epsilon = 1e-15;
     for name in ["fuzz_airy_s1_7304_p", "fuzz_airy_s1_7304"] {
-        let path = std::path::PathBuf::from(env!("CARGO_MANIFEST_DIR"))
-            .join(format!("tests/fuzz_found/{name}.json"));
-        let case = load::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap();
-        let pt = &build::probe_points(&case.spec.probe)[0];
-        let built = build::build_scene(&case.spec.scene, &pt.overrides).unwrap();
-        let lambda_m = build::spectrum(&case.spec.light, &pt.overrides)[0].0;
-        let st = run::trace_settings(&case, &built, lambda_m).unwrap();
-        assert_eq!(
-            st.limits.max_internal_reflections, 31,
-            "{name}: the 50-digit cut sum is of orders 0–15"
-        );
-        let cut = traced_error(name, &truth[&format!("{name}/orders_0_15")]);
-        let full = &truth[name];
-        let t = full[0];
-        let off = traced_error(name, full) * t;
-        let bound = 2.0 * t.sqrt() * epsilon + epsilon * epsilon;
-        println!(
-            "{name}: traced vs the cut sum {cut:.3e}; vs the full sum {off:.3e} ≤ {bound:.3e}"
-        );
-        assert!(cut <= 1e-14, "{name}: traced vs its cut sum {cut:e}");
-        assert!(
-            off <= bound,
-            "{name}: {off:e} off the full sum, bound {bound:e}"
-        );
+        let cut = truth[&format!("{name}/orders_0_15")][0];
+        crate::support::assert_traced_cut_sum(name, truth[name][0], cut, 31, 1e-15);
     }
 }
 

@@ -144,3 +144,32 @@ pub fn assert_drawn_scenes_pass(scenes: impl IntoIterator<Item = (Family, u64, u
     }
     assert!(bad.is_empty(), "{bad:#?}");
 }
+
+/// Asserts that the found case `name` (one probe point) traces the Airy sum its tail bound
+/// `epsilon` (`trace.airy_tail_epsilon`) cuts, not a rounding of the full one: the budget traces
+/// `internal` internal reflections, the traced value is within 1e-14 of `cut` (50 digits of
+/// those orders alone) and within the case's tail bound 2√O ε √I0 + ε² I0 (I0 = 1,
+/// docs/PHYSICS.md §8) of `full` (50 digits of every order).
+pub fn assert_traced_cut_sum(name: &str, full: f64, cut: f64, internal: usize, epsilon: f64) {
+    use fringe::harness::case::{build, load, run};
+    let path =
+        PathBuf::from(env!("CARGO_MANIFEST_DIR")).join(format!("tests/fuzz_found/{name}.json"));
+    let case = load::parse(&path, &std::fs::read_to_string(&path).unwrap()).unwrap();
+    let pt = &build::probe_points(&case.spec.probe)[0];
+    let built = build::build_scene(&case.spec.scene, &pt.overrides).unwrap();
+    let lambda_m = build::spectrum(&case.spec.light, &pt.overrides)[0].0;
+    let st = run::trace_settings(&case, &built, lambda_m).unwrap();
+    assert_eq!(
+        st.limits.max_internal_reflections, internal,
+        "{name}: the 50-digit cut sum is of {internal} internal reflections"
+    );
+    let to_cut = traced_error(name, &[cut]);
+    let off = traced_error(name, &[full]) * full;
+    let bound = 2.0 * full.sqrt() * epsilon + epsilon * epsilon;
+    println!("{name}: traced vs the cut sum {to_cut:.3e}; vs the full sum {off:.3e} ≤ {bound:.3e}");
+    assert!(to_cut <= 1e-14, "{name}: traced vs its cut sum {to_cut:e}");
+    assert!(
+        off <= bound,
+        "{name}: {off:e} off the full sum, bound {bound:e}"
+    );
+}
