@@ -376,6 +376,21 @@ struct Scratch {
 }
 
 impl Context<'_> {
+    /// Adds each shading's Σ_i W_i I_i over the wavelength grid, from its beat terms in
+    /// `s.beats`, into `out`: from the table where there is one (the kernel's pixels), else
+    /// phasor by phasor ([`Beats::weighted_sum`]).
+    fn add_spectral_sums(&self, s: &mut Scratch, out: &mut [[f64; 3]]) {
+        for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
+            let w = match self.table.as_ref().and_then(|t| t.weighted_sum(beats)) {
+                Some(w) => w,
+                None => beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc),
+            };
+            for c in 0..3 {
+                sum[c] += w[c];
+            }
+        }
+    }
+
     /// Adds Σ_i W_i I_i of every shading at `point` into `out` (one [f64; 3] per shading);
     /// returns the number of arrivals and whether the kernel gave them.
     fn pixel(
@@ -391,16 +406,10 @@ impl Context<'_> {
         if let Some(k) = &self.kernel
             && k.contributions(point, observer, &mut s.kernel, &mut s.prepared)
         {
-            for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
+            for beats in s.beats.iter_mut() {
                 beats.set(&s.prepared);
-                let w = match self.table.as_ref().and_then(|t| t.weighted_sum(beats)) {
-                    Some(w) => w,
-                    None => beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc),
-                };
-                for c in 0..3 {
-                    sum[c] += w[c];
-                }
             }
+            self.add_spectral_sums(s, out);
             return (s.prepared.len(), true);
         }
         if !self.dispersive {
@@ -418,12 +427,7 @@ impl Context<'_> {
                 prepare(&arr, *sh, &mut s.prepared);
                 s.beats[k].set(&s.prepared);
             }
-            for (beats, sum) in s.beats.iter_mut().zip(out.iter_mut()) {
-                let w = beats.weighted_sum(&self.lambdas, &self.weights, &mut s.acc);
-                for c in 0..3 {
-                    sum[c] += w[c];
-                }
-            }
+            self.add_spectral_sums(s, out);
             (arr.len(), false)
         } else {
             let mut paths = 0;

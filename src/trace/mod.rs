@@ -688,36 +688,26 @@ impl Recorder<'_, '_> {
     ) {
         let first = self.found.len();
         let (found, channels, si) = (&mut *self.found, self.channels, self.source);
-        vector.emit(
-            channels,
-            self.target,
-            self.coherence_length_m,
-            |k, mut ray| {
-                if let Some(phi) = exact {
-                    ray.optical_path = phi;
-                }
-                found.push(Arrival {
-                    source: si,
-                    channel: channels[k],
-                    path: Arc::clone(&path),
-                    vector: ray,
-                    paper: None,
-                    tail: None,
-                })
-            },
-        );
+        let with_exact = |mut ray: Ray| {
+            if let Some(phi) = exact {
+                ray.optical_path = phi;
+            }
+            ray
+        };
+        vector.emit(channels, self.target, self.coherence_length_m, |k, ray| {
+            found.push(Arrival {
+                source: si,
+                channel: channels[k],
+                path: Arc::clone(&path),
+                vector: with_exact(ray),
+                paper: None,
+                tail: None,
+            })
+        });
         if let Some(paper) = paper {
-            paper.emit(
-                channels,
-                self.target,
-                self.coherence_length_m,
-                |k, mut ray| {
-                    if let Some(phi) = exact {
-                        ray.optical_path = phi;
-                    }
-                    found[first + k].paper = Some(ray)
-                },
-            );
+            paper.emit(channels, self.target, self.coherence_length_m, |k, ray| {
+                found[first + k].paper = Some(with_exact(ray))
+            });
         }
     }
 
