@@ -179,7 +179,7 @@ impl TailClosure {
     /// other component is below 1e-15 of it and decays no slower, so that its share of every
     /// order stays below 1e-30); for mixed light it is [`scalar_series::scalar_tail`].
     /// `close` refuses 1 − |A_σ|² < [`scalar_series::MIN_ONE_MINUS_ABS2`], below which the sum
-    /// may leave the f64 range (the NaN arms are unreachable).
+    /// cannot be certified (the NaN arms are unreachable).
     pub(crate) fn scalar_factor(&self, e: &Field3, jump: bool, lambda_m: f64) -> Complex64 {
         let dot = |v: DVec3| e[0] * v.x + e[1] * v.y + e[2] * v.z;
         let (es, ep) = (dot(self.s).norm(), dot(self.p).norm());
@@ -392,12 +392,12 @@ pub fn close(
                          their sum does not converge",
                     );
                 }
-                // The scalar rungs' sum for mixed light (eq. T2) is evaluated down to this
+                // The scalar rungs' sum for mixed light (eq. T2) is certified down to this
                 // 1 − |A|²; below it no rung's closure is offered rather than a NaN one.
                 if d_a.iter().any(|x| *x < scalar_series::MIN_ONE_MINUS_ABS2) {
                     return refuse(format!(
                         "a round trip keeps all but {:e} of its power (1 − |A|² below {:e}): \
-                         the scalar rungs' closed sum would leave the f64 range",
+                         the scalar rungs' closed sum cannot be certified there",
                         d_a[0].min(d_a[1]),
                         scalar_series::MIN_ONE_MINUS_ABS2
                     ));

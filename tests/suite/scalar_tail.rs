@@ -10,7 +10,7 @@
 use fringe::accumulate::fidelity::Fidelity;
 use fringe::harness::case::{load, run};
 use fringe::harness::verdict;
-use fringe::trace::tail::scalar_series::scalar_tail;
+use fringe::trace::tail::scalar_series::{MIN_ONE_MINUS_ABS2, scalar_tail};
 use num_complex::Complex64;
 use proptest::prelude::*;
 use serde_json::json;
@@ -89,11 +89,13 @@ fn slow(ws: f64, wp: f64, ds: f64, dp: f64, c: f64) -> Complex64 {
 
 fn one_minus_abs2() -> impl Strategy<Value = f64> {
     prop_oneof![
-        (-300.0f64..0.0).prop_map(|e| 10f64.powf(e)),
+        (MIN_ONE_MINUS_ABS2.log10()..0.0).prop_map(|e| 10f64.powf(e)),
         (-16.0f64..0.0).prop_map(|e| 10f64.powf(e)),
         0.0f64..=1.0,
     ]
-    .prop_filter("1 − |A|² ≥ 1e-300", |d| *d >= 1e-300)
+    .prop_filter("1 − |A|² ≥ the smallest taken", |d| {
+        *d >= MIN_ONE_MINUS_ABS2
+    })
 }
 
 fn weight() -> impl Strategy<Value = f64> {

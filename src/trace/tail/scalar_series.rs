@@ -38,9 +38,12 @@ use std::f64::consts::TAU;
 /// Unit roundoff of f64.
 const U: f64 = f64::EPSILON / 2.0;
 
-/// The smallest 1 − |A|² taken (with a positive weight): F ~ 1/(1 − |A|) stays far inside the
-/// f64 range. Physical round trips are many orders above it (1e-9 at cos θ = 1e-9).
-pub const MIN_ONE_MINUS_ABS2: f64 = 1e-300;
+/// The smallest 1 − |A|² taken (with a positive weight): the acceleration's truncation
+/// 4|μ|(3 + √8)^{−n}, |μ| ~ 1/(1 − |A|), stays below 1e-12 of F within 380 terms
+/// ((3 + √8)^{−380} ≈ 1e-291; at 1e-294 the bound was 3e2 against |F| = 0.33, at 3e-244
+/// 5e-12 of F). Physical round
+/// trips are many orders above it (1e-9 at cos θ = 1e-9).
+pub const MIN_ONE_MINUS_ABS2: f64 = 1e-200;
 
 /// Fewest terms of the accelerated series (module docs): truncation ≤ 4 |μ| (3 + √8)^{−40}.
 const TERMS: usize = 40;
@@ -73,7 +76,8 @@ pub struct ScalarTail {
 /// order N's field (any common scale; normalized here), `one_minus_abs2` = (1 − x, 1 − y) as
 /// the tracer holds them (no cancellation), `cycles` = c, the round trip's phase in cycles.
 /// `None` for input with no finite sum: a weight negative or not finite, a weighted 1 − |A|²
-/// outside [1e-300, 1] (1 − |A|² ≤ 0: the orders do not decay; below 1e-300 F may leave the
+/// outside [1e-200, 1] (1 − |A|² ≤ 0: the orders do not decay; below 1e-200 the series cannot
+/// certify F to 1e-12 within its terms, and F may leave the
 /// f64 range), or c not finite.
 pub fn scalar_tail(weights: [f64; 2], one_minus_abs2: [f64; 2], cycles: f64) -> Option<ScalarTail> {
     let [ws, wp] = weights;
