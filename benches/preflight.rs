@@ -1,12 +1,16 @@
 //! Calibration of the work preflight (`fringe::harness::case::run::preflight`): for each scene,
 //! the estimate in work units and in seconds (`SECONDS_PER_WORK_UNIT`, CPU-seconds per unit)
 //! against the measured run of the case (`run::run`, what `fringe check` traces): its CPU-seconds
-//! (all threads, from /proc/self/stat, so the number does not depend on how loaded the machine
-//! is) and its wall time. Not a criterion bench: each scene runs once, and the table is the
-//! output. Scenes: every library case; plate_two_beam_paper with 1–3 plates stacked 1 mm apart
-//! (4 and more are refused by the preflight and are not run); plate_two_beam_paper with 40
-//! internal reflections; plate_airy_s at m = 2000 internal reflections (no tail rule) at 200
-//! angles (the far-field walk of `benches/airy.rs`).
+//! (all threads of the process, `clock_gettime(CLOCK_PROCESS_CPUTIME_ID)`, nanosecond
+//! resolution, so the number depends little on how loaded the machine is) and its wall time.
+//! Not a criterion bench: the table is the output. A scene is run again until its runs add up to
+//! at least [`MIN_TOTAL_CPU_S`] CPU-seconds and number at least [`MIN_RUNS`], unless one run
+//! alone takes [`LONG_RUN_CPU_S`] or more (then it runs once); the table gives the mean
+//! CPU-seconds per run, the spread (smallest–largest run) and the ratio of the mean to the
+//! estimate with its spread. Scenes: every library case; plate_two_beam_paper with 1–3 plates
+//! stacked 1 mm apart (4 and more are refused by the preflight and are not run);
+//! plate_two_beam_paper with 40 internal reflections; plate_airy_s at m = 2000 internal
+//! reflections (no tail rule) at 200 angles (the far-field walk of `benches/airy.rs`).
 //!
 //! Run: `cargo bench -p fringe-benches --bench preflight` (optionally a substring of the scene
 //! names as the first argument).
@@ -17,15 +21,27 @@ use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
-/// CPU-seconds used by this process so far (user + system, all threads).
+/// CPU-seconds of every thread of this process so far, live or exited (user + system), from
+/// `clock_gettime(CLOCK_PROCESS_CPUTIME_ID)` (nanoseconds; /proc/self/stat counts 10 ms ticks,
+/// which were 20–30 % of the 1-plate scene's run).
 fn cpu_seconds() -> f64 {
-    let stat = std::fs::read_to_string("/proc/self/stat").expect("/proc/self/stat (Linux)");
-    // Fields after the command name in parentheses: state is field 3; utime, stime are 14, 15.
-    let rest = &stat[stat.rfind(')').expect("stat format") + 2..];
-    let f: Vec<&str> = rest.split_whitespace().collect();
-    let ticks: f64 = f[11].parse::<f64>().unwrap() + f[12].parse::<f64>().unwrap();
-    ticks / 100.0 // USER_HZ
+    let mut t = libc::timespec {
+        tv_sec: 0,
+        tv_nsec: 0,
+    };
+    // SAFETY: `t` is a valid, writable timespec; the clock id is a constant the kernel knows.
+    let rc = unsafe { libc::clock_gettime(libc::CLOCK_PROCESS_CPUTIME_ID, &mut t) };
+    assert_eq!(rc, 0, "clock_gettime(CLOCK_PROCESS_CPUTIME_ID)");
+    t.tv_sec as f64 + t.tv_nsec as f64 * 1e-9
 }
+
+/// A scene is run again until its runs add up to at least this many CPU-seconds...
+const MIN_TOTAL_CPU_S: f64 = 0.5;
+/// ... and number at least this many,
+const MIN_RUNS: usize = 3;
+/// unless one run takes this many CPU-seconds or more (the 2- and 3-plate scenes, the Airy walk
+/// at m = 2000): then that one run is the measurement.
+const LONG_RUN_CPU_S: f64 = 5.0;
 
 fn cases_dir() -> PathBuf {
     Path::new(env!("CARGO_MANIFEST_DIR")).join("../cases")
@@ -93,9 +109,9 @@ fn main() {
         "rate: {SECONDS_PER_WORK_UNIT:.2e} CPU-s per work unit; cap {MAX_PATH_EVENTS:.0e} units"
     );
     println!(
-        "| scene | work units (∝ m + ∝ m²) | estimate (CPU-s) | measured CPU-s | wall s | measured / estimate |"
+        "| scene | work units (∝ m + ∝ m² + per sample) | estimate (CPU-s) | runs | measured CPU-s per run (spread) | wall s per run | measured / estimate (spread) |"
     );
-    println!("| --- | --- | --- | --- | --- | --- |");
+    println!("| --- | --- | --- | --- | --- | --- | --- |");
     for (name, file, doc) in scenes() {
         if filter.as_ref().is_some_and(|f| !name.contains(f.as_str())) {
             continue;
@@ -105,20 +121,37 @@ fn main() {
         let (units, parts) = match run::work_estimate(&case) {
             Ok(e) => (e.units(), e),
             Err(e) => {
-                println!("| {name} | refused: {} | | | | |", e.message);
+                println!("| {name} | refused: {} | | | | | |", e.message);
                 continue;
             }
         };
         let estimate = units * SECONDS_PER_WORK_UNIT;
-        let (c0, t0) = (cpu_seconds(), Instant::now());
-        let result = run::run(&case).expect("the case runs");
-        let (cpu, wall) = (cpu_seconds() - c0, t0.elapsed().as_secs_f64());
-        std::hint::black_box(result);
+        let mut cpu = Vec::new();
+        let t0 = Instant::now();
+        loop {
+            let c0 = cpu_seconds();
+            let result = run::run(&case).expect("the case runs");
+            cpu.push(cpu_seconds() - c0);
+            std::hint::black_box(result);
+            let total: f64 = cpu.iter().sum();
+            if cpu[0] >= LONG_RUN_CPU_S || (total >= MIN_TOTAL_CPU_S && cpu.len() >= MIN_RUNS) {
+                break;
+            }
+        }
+        let n = cpu.len() as f64;
+        let wall = t0.elapsed().as_secs_f64() / n;
+        let mean = cpu.iter().sum::<f64>() / n;
+        let lo = cpu.iter().copied().fold(f64::INFINITY, f64::min);
+        let hi = cpu.iter().copied().fold(0.0, f64::max);
         println!(
-            "| {name} | {units:.2e} ({:.2e} + {:.2e}) | {estimate:.3} | {cpu:.2} | {wall:.2} | {:.2} |",
+            "| {name} | {units:.2e} ({:.2e} + {:.2e} + {:.2e}) | {estimate:.4} | {} | {mean:.4} ({lo:.4}–{hi:.4}) | {wall:.4} | {:.2} ({:.2}–{:.2}) |",
             parts.linear_units,
             parts.quadratic_units,
-            cpu / estimate
+            parts.sample_units,
+            cpu.len(),
+            mean / estimate,
+            lo / estimate,
+            hi / estimate
         );
     }
 }

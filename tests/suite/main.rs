@@ -33,6 +33,7 @@ mod material;
 mod output_safety;
 mod path_solver;
 mod pipeline_props;
+mod preflight;
 mod precision_classes;
 mod render;
 mod renderer_models;

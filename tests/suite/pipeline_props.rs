@@ -256,7 +256,9 @@ fn the_convergence_report_is_counted_at_its_own_budgets() {
             expected(w)
         );
     }
-    let ratio = a.units() / b.units();
+    // The per-sample term (`run::SAMPLE_UNITS` per point and sample) follows the angles alone.
+    assert_eq!(a.sample_units / b.sample_units, 401.0 / 201.0);
+    let ratio = (a.linear_units + a.quadratic_units) / (b.linear_units + b.quadratic_units);
     assert!(
         (expected(linear)..=expected(quadratic)).contains(&ratio),
         "{ratio} outside [{}, {}]",

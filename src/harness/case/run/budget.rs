@@ -142,11 +142,24 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
 /// 110 s measured) too; four (2.8e9) are refused.
 pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
-/// Measured seconds of tracing per work unit: 4.4e-7 to 1.05e-6 (stacked plates and a 41-order
-/// plate under a point source, the Airy plate walk at m = 2000) on the 2-core AMD EPYC VM of
-/// this project at a load of about 12 (six developers building); README "Limits" gives the
-/// runs and the command. Used only to state the estimate in time.
+/// Measured CPU-seconds (all threads) per work unit, used only to state the estimate in time.
+/// Calibrated with `benches/preflight.rs` (CPU time from `CLOCK_PROCESS_CPUTIME_ID`, short
+/// scenes repeated to at least 0.5 CPU-s) on the project's 2-core Intel Xeon VM on 29 November
+/// 2026 (fourteenth session, load 6–9 from other builds), together with [`WALKED_EVENT_UNITS`]
+/// and [`SAMPLE_UNITS`]: measured / estimate 1.13 (1 plate), 0.91 (2 stacked plates), 1.26
+/// (3 plates), 0.89 (plate_two_beam_paper at m = 40), 1.47 (the Airy plate walk at m = 2000,
+/// 200 angles), 0.86–1.05 (library Airy cases), 0.63–2.0 over the other library cases (the
+/// ends: tir_interference, plane waves onto a point, and michelson, a point source over four
+/// surfaces: the unit count does not see what a solved event costs per source kind); README
+/// "Limits" gives the table and the command. (Before: 4.4e-7 to 1.05e-6 on an AMD EPYC VM.)
 pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+
+/// Work units of one spectral sample at one probe point besides its tracing: the contributions
+/// at every fidelity level, the conditioning terms, the closed-form references and the
+/// observable factor (about 15 µs on the Intel Xeon VM). Without it the cheapest library cases
+/// (two slits or two point sources, a few units of tracing per point) were estimated 11–18
+/// times below their run (young_paper, incoherent_sources; `benches/preflight.rs`).
+pub const SAMPLE_UNITS: f64 = 25.0;
 
 /// The reflected orders of the rungs of the bounce-convergence report of monochrome Airy cases
 /// (`convergence::convergence`), each traced at 2·orders − 1 internal reflections while that is
@@ -163,9 +176,11 @@ const WALKED_NODE_UNITS: f64 = 1.0;
 /// Work units per event of every traced path under the far-field walk: the walk shares each
 /// path's beginning with the next order's, but the case run still passes over every arrival's
 /// whole path (the phase ledger, the rounding and representation terms of
-/// `harness::conditioning`), so an Airy point with m internal reflections costs a part ∝ m
-/// (the walk) and a part ∝ m² (those passes). Calibrated with `benches/preflight.rs`.
-const WALKED_EVENT_UNITS: f64 = 0.04;
+/// `harness::conditioning`) at every spectral sample, so an Airy point with m internal
+/// reflections costs a part ∝ m (the walk) and a part ∝ m² (those passes). Calibrated with
+/// `benches/preflight.rs` against the Airy plate at m = 2000 (0.04 put its run at 1.58 times
+/// the estimate on the Intel Xeon VM, 29 November 2026).
+const WALKED_EVENT_UNITS: f64 = 0.05;
 
 /// The work of one point at its budget, in two parts that scale differently with the budget m.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -292,8 +307,10 @@ fn walked(built: &Built, pt: &ProbePoint) -> bool {
 /// (the tree is enumerated with doubling depth and refused as soon as it outgrows the cap).
 /// Every other point costs the same, scaled by its own budget m as the tracer scales
 /// (the walk of a plane wave in the far field: its part ∝ (m + 2) and its per-event part
-/// ∝ (m + 2)²; otherwise (m + 2)²), times its
-/// spectral samples; the bounce-convergence report of monochrome Airy cases adds its ladder of
+/// ∝ (m + 2)²; otherwise (m + 2)²): the tracing once per point where no index depends on the
+/// wavelength (the tracer moves one trace's arrivals to every other sample), else once per
+/// spectral sample, and the passes over the walked paths once per sample; every sample of
+/// every point adds [`SAMPLE_UNITS`] (what a sample costs besides its tracing); the bounce-convergence report of monochrome Airy cases adds its ladder of
 /// budgets (`CONVERGENCE_ORDERS`) at up to 24 of the points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
 /// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
@@ -310,12 +327,15 @@ pub struct WorkEstimate {
     /// Every event of every candidate sequence (∝ (m + 2)² per point), and everything of a
     /// point that is not walked.
     pub quadratic_units: f64,
+    /// [`SAMPLE_UNITS`] per spectral sample of every probe point: what a sample costs besides
+    /// its tracing, whatever the budget.
+    pub sample_units: f64,
 }
 
 impl WorkEstimate {
     /// The whole estimate, work units.
     pub fn units(&self) -> f64 {
-        self.linear_units + self.quadratic_units
+        self.linear_units + self.quadratic_units + self.sample_units
     }
 }
 
@@ -329,8 +349,19 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
             .map_err(|e| case_err(case, "$.scene", e))?;
         let spectrum = build::spectrum(&spec.light, &pt.overrides);
         let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
-        budgets.push((internal, walked(&built, pt), spectrum.len() as f64));
+        // `trace_point` traces a spectrum through media whose indices do not depend on the
+        // wavelength once, and moves the arrivals to every other sample (`at_wavelength`).
+        let dispersionless = built.media.values().all(|m| {
+            matches!(
+                m.dispersion,
+                crate::optics::material::Dispersion::Constant { .. }
+            )
+        });
+        let samples = spectrum.len() as f64;
+        let traces = if dispersionless { 1.0 } else { samples };
+        budgets.push((internal, walked(&built, pt), traces, samples));
     }
+    let sample_units = SAMPLE_UNITS * budgets.iter().map(|b| b.3).sum::<f64>();
     // The representative point: the largest budget, the centre among equals.
     let centre = points.len() / 2;
     let worst = budgets.iter().map(|b| b.0).max().unwrap_or(0);
@@ -340,10 +371,15 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
         budgets.iter().position(|b| b.0 == worst).unwrap_or(centre)
     };
     // Each point relative to the representative one: the weights of its linear and its
-    // quadratic part.
-    let scale = |&(m, walked, samples): &(usize, bool, f64)| {
+    // quadratic part. The tracing (the walk and its discovery, or the solver) counts once per
+    // trace of the point; the case run's passes over the walked paths once per sample.
+    let scale = |&(m, walked, traces, samples): &(usize, bool, f64, f64)| {
         let r = (m as f64 + 2.0) / (worst as f64 + 2.0);
-        (samples * if walked { r } else { r * r }, samples * r * r)
+        if walked {
+            (traces * r, samples * r * r)
+        } else {
+            (traces * r * r, traces * r * r)
+        }
     };
     let (mut linear_weight, mut quadratic_weight) = budgets
         .iter()
@@ -372,7 +408,7 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
             if internal > worst.max(1) {
                 break;
             }
-            let (l, q) = scale(&(internal, walked, 1.0));
+            let (l, q) = scale(&(internal, walked, 1.0, 1.0));
             linear_weight += sampled * l;
             quadratic_weight += sampled * q;
         }
@@ -384,6 +420,7 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
     let estimate = WorkEstimate {
         linear_units: per_point.linear * linear_weight,
         quadratic_units: per_point.quadratic * quadratic_weight,
+        sample_units,
     };
     let work = estimate.units();
     if work > MAX_PATH_EVENTS {

@@ -27,8 +27,8 @@ pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
 pub use budget::{
-    CLOSED_TAIL_ORDERS, MAX_PATH_EVENTS, SECONDS_PER_WORK_UNIT, WorkEstimate, preflight,
-    work_estimate,
+    CLOSED_TAIL_ORDERS, MAX_PATH_EVENTS, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, WorkEstimate,
+    preflight, work_estimate,
 };
 use convergence::*;
 use metrics::*;
