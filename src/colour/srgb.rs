@@ -116,9 +116,48 @@ pub fn srgb_decode(encoded: f64) -> f64 {
     }
 }
 
-/// Linear sRGB → 8-bit sRGB: clip to [0, 1], [`srgb_encode`], round(255 V).
+/// Linear sRGB → 8-bit sRGB: clip to [0, 1], [`srgb_encode`], round(255 V); a NaN gives 0.
+///
+/// Without a `powf` per channel: the code round(255 V(L)) steps up by one at each of 255
+/// thresholds of L, so the code of L is the number of thresholds at or below L, found by
+/// binary search in [`srgb8_thresholds`] (8 comparisons). Same bytes as [`to_srgb8_powf`] for
+/// every input: each threshold is the smallest f64 at which that reference path reaches the
+/// code, and the reference path never steps down (tests `colour::srgb8_*`).
 pub fn to_srgb8(linear_srgb: [f64; 3]) -> [u8; 3] {
+    let thresholds = srgb8_thresholds();
+    // A NaN is at or above no threshold: code 0, as `NaN as u8` in the reference path.
+    linear_srgb.map(|l| thresholds.partition_point(|&t| t <= l) as u8)
+}
+
+/// The reference 8-bit conversion: round(255 [`srgb_encode`](L)) per channel, a `powf` each
+/// (`NaN as u8` is 0). [`to_srgb8`] gives the same bytes from a table.
+pub fn to_srgb8_powf(linear_srgb: [f64; 3]) -> [u8; 3] {
     linear_srgb.map(|l| (255.0 * srgb_encode(l)).round() as u8)
+}
+
+/// The 255 thresholds of the 8-bit code, increasing: entry k − 1 is the smallest f64 L in
+/// [0, 1] whose code round(255 [`srgb_encode`](L)) is at least k, found once by bisection on
+/// the bit patterns of [0, 1] (ordered like the values) with the `powf` path itself; it lies
+/// within rounding of the exact curve's [`srgb_decode`]((k − ½)/255) (IEC 61966-2-1 eq. (5.1)).
+pub fn srgb8_thresholds() -> &'static [f64; 255] {
+    static THRESHOLDS: std::sync::OnceLock<[f64; 255]> = std::sync::OnceLock::new();
+    THRESHOLDS.get_or_init(|| {
+        let code = |l: f64| (255.0 * srgb_encode(l)).round() as u8;
+        std::array::from_fn(|i| {
+            let k = i as u8 + 1;
+            // code(lo) < k ≤ code(hi): code(0) = 0, code(1) = 255.
+            let (mut lo, mut hi) = (0.0f64.to_bits(), 1.0f64.to_bits());
+            while hi - lo > 1 {
+                let mid = lo + (hi - lo) / 2;
+                if code(f64::from_bits(mid)) >= k {
+                    hi = mid;
+                } else {
+                    lo = mid;
+                }
+            }
+            f64::from_bits(hi)
+        })
+    })
 }
 
 /// An XYZ colour on an sRGB display, with the choices that produced it.
