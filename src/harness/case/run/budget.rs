@@ -438,7 +438,8 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
                  {} surface(s) with up to {worst} internal reflections give {:.2e} \
                  units per probe point and wavelength (sequence discovery and solving; \
                  reflections between separate surfaces in the ambient medium multiply the \
-                 sequences), times {} probe point(s) and their spectral samples: use fewer \
+                 sequences), times {} probe point(s) (and their spectral samples through \
+                 dispersive media), plus {SAMPLE_UNITS} units per point and sample: use fewer \
                  surfaces, internal reflections, probe points or spectral samples",
                 if measured { "about" } else { "at least" },
                 work * SECONDS_PER_WORK_UNIT,
