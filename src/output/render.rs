@@ -29,12 +29,13 @@
 //!
 //! # The parallel-stack kernel
 //!
-//! For point sources over unbounded parallel interfaces (with absorbing rectangular shields) at
-//! `vector` fidelity, non-dispersive, without spreading, the rays of a pixel come from
-//! [`crate::output::stack_kernel`] instead of the exact trace: the sequences' walks through the
-//! slabs are found once per picture and each pixel only solves the 1-D lateral equation
-//! (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels it cannot
-//! vouch for, and every other scene or shading, are traced exactly ([`PixelPath::Exact`]
+//! For point sources over unbounded parallel interfaces (with absorbing rectangular shields),
+//! non-dispersive, without spreading, the rays of a pixel come from
+//! [`crate::output::stack_kernel`] instead of the exact trace, at every shading (one kernel
+//! pass per pixel feeds all of a picture's shadings, as one trace does): the sequences' walks
+//! through the slabs are found once per picture and each pixel only solves the 1-D lateral
+//! equation (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels
+//! it cannot vouch for, and every other scene, are traced exactly ([`PixelPath::Exact`]
 //! forces that everywhere). With 16 wavelengths or more, the kernel's pixels take their
 //! spectral sums from `output::beat_table` (one table read per beat term instead of
 //! one phasor per wavelength). `tests/suite/stack_kernel.rs` holds both to the exact trace.
@@ -57,7 +58,7 @@ use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
 use crate::output::beat_table::BeatTable;
-use crate::output::stack_kernel::{KernelScratch, StackKernel};
+use crate::output::stack_kernel::{self, KernelRay, KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -241,7 +242,7 @@ pub struct Render {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PixelPath {
     /// The parallel-stack kernel ([`crate::output::stack_kernel`]) for the pixels it vouches
-    /// for, where the scene and shadings are of its class; the exact trace everywhere else.
+    /// for, where the scene is of its class (any shading); the exact trace everywhere else.
     Auto,
     /// Every pixel traced exactly ([`arrivals_at`]).
     Exact,
@@ -359,7 +360,7 @@ struct Context<'a> {
     shadings: &'a [Shading],
     /// Whether some shading needs the rays under the paper's rules.
     paper_rules: bool,
-    /// The parallel-stack kernel, where the scene and shadings are of its class.
+    /// The parallel-stack kernel, where the scene is of its class.
     kernel: Option<StackKernel>,
     /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
     table: Option<BeatTable>,
@@ -373,6 +374,7 @@ struct Scratch {
     /// One per shading.
     beats: Vec<Beats>,
     kernel: KernelScratch,
+    kernel_rays: Vec<KernelRay>,
 }
 
 impl Context<'_> {
@@ -402,15 +404,22 @@ impl Context<'_> {
     ) -> (usize, bool) {
         let scene = &self.built.scene;
         s.beats.resize_with(self.shadings.len(), Beats::default);
-        // The kernel serves only `vector` shadings of a non-dispersive scene (`render_with`).
+        // The kernel serves every shading of a non-dispersive scene (`render_with`).
         if let Some(k) = &self.kernel
-            && k.contributions(point, observer, &mut s.kernel, &mut s.prepared)
+            && k.rays(
+                point,
+                observer,
+                self.paper_rules,
+                &mut s.kernel,
+                &mut s.kernel_rays,
+            )
         {
-            for beats in s.beats.iter_mut() {
-                beats.set(&s.prepared);
+            for (k, sh) in self.shadings.iter().enumerate() {
+                stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
+                s.beats[k].set(&s.prepared);
             }
             self.add_spectral_sums(s, out);
-            return (s.prepared.len(), true);
+            return (s.kernel_rays.len(), true);
         }
         if !self.dispersive {
             let optics = &self.optics[0];
@@ -545,13 +554,7 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
         optics.push(o);
     }
-    let kernel = if path == PixelPath::Auto
-        && !dispersive
-        && req
-            .shadings
-            .iter()
-            .all(|s| *s == Shading::Level(Fidelity::Vector))
-    {
+    let kernel = if path == PixelPath::Auto && !dispersive {
         StackKernel::new(&built.scene, &optics[0], &plans[0], &settings)
     } else {
         None
