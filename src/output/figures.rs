@@ -22,7 +22,7 @@ use std::path::Path;
 use std::time::Instant;
 
 /// The Young scene of Fig. 3.
-pub(crate) const YOUNG_SCENE: &str = include_str!("../../figures/young_fig3.json");
+pub const YOUNG_SCENE: &str = include_str!("../../figures/young_fig3.json");
 /// The amplitude-division scene of Figs. 5–8.
 pub const PLATE_SCENE: &str = include_str!("../../figures/plate_amplitude_division.json");
 

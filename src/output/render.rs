@@ -36,7 +36,10 @@
 //! through the slabs are found once per picture and each pixel only solves the 1-D lateral
 //! equation (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels
 //! it cannot vouch for, and every other scene, are traced exactly ([`PixelPath::Exact`]
-//! forces that everywhere). With 16 wavelengths or more, the kernel's pixels take their
+//! forces that everywhere). Line sources without any surface (Young's slits) have a kernel of
+//! their own, [`crate::output::free_kernel`]: one direct ray per source, its direction and
+//! double-double optical path as the path solver forms them. With 16 wavelengths or more, the
+//! kernels' pixels take their
 //! spectral sums from `output::beat_table` (one table read per beat term instead of
 //! one phasor per wavelength). `tests/suite/stack_kernel.rs` holds both to the exact trace.
 //!
@@ -58,6 +61,7 @@ use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
 use crate::output::beat_table::BeatTable;
+use crate::output::free_kernel::{FreeKernel, FreeScratch};
 use crate::output::stack_kernel::{self, KernelRay, KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
@@ -234,15 +238,17 @@ pub struct Render {
     pub paths: usize,
     /// Wall time of the render (s).
     pub seconds: f64,
-    /// Pixels whose rays the parallel-stack kernel gave (the rest were traced exactly).
+    /// Pixels whose rays a kernel gave (the parallel-stack kernel, or the kernel of line
+    /// sources without surfaces); the rest were traced exactly.
     pub kernel_pixels: usize,
 }
 
 /// How the rays of a pixel are found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PixelPath {
-    /// The parallel-stack kernel ([`crate::output::stack_kernel`]) for the pixels it vouches
-    /// for, where the scene is of its class (any shading); the exact trace everywhere else.
+    /// The parallel-stack kernel ([`crate::output::stack_kernel`]) or the kernel of line
+    /// sources without surfaces ([`crate::output::free_kernel`]) for the pixels they vouch
+    /// for, where the scene is of their class (any shading); the exact trace everywhere else.
     Auto,
     /// Every pixel traced exactly ([`arrivals_at`]).
     Exact,
@@ -362,6 +368,8 @@ struct Context<'a> {
     paper_rules: bool,
     /// The parallel-stack kernel, where the scene is of its class.
     kernel: Option<StackKernel>,
+    /// The kernel of line sources without surfaces, where the scene is of its class.
+    free: Option<FreeKernel>,
     /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
     table: Option<BeatTable>,
 }
@@ -374,6 +382,7 @@ struct Scratch {
     /// One per shading.
     beats: Vec<Beats>,
     kernel: KernelScratch,
+    free: FreeScratch,
     kernel_rays: Vec<KernelRay>,
 }
 
@@ -404,16 +413,19 @@ impl Context<'_> {
     ) -> (usize, bool) {
         let scene = &self.built.scene;
         s.beats.resize_with(self.shadings.len(), Beats::default);
-        // The kernel serves every shading of a non-dispersive scene (`render_with`).
-        if let Some(k) = &self.kernel
-            && k.rays(
+        // The kernels serve every shading of a non-dispersive scene (`render_with`).
+        let by_kernel = match (&self.kernel, &self.free) {
+            (Some(k), _) => k.rays(
                 point,
                 observer,
                 self.paper_rules,
                 &mut s.kernel,
                 &mut s.kernel_rays,
-            )
-        {
+            ),
+            (None, Some(f)) => f.rays(point, observer, &mut s.free, &mut s.kernel_rays),
+            (None, None) => false,
+        };
+        if by_kernel {
             for (k, sh) in self.shadings.iter().enumerate() {
                 stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
                 s.beats[k].set(&s.prepared);
@@ -559,7 +571,12 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
     } else {
         None
     };
-    let table = if kernel.is_some() && samples.len() >= 16 {
+    let free = if path == PixelPath::Auto && !dispersive {
+        FreeKernel::new(&built.scene, &optics[0], &settings)
+    } else {
+        None
+    };
+    let table = if (kernel.is_some() || free.is_some()) && samples.len() >= 16 {
         let l: Vec<f64> = samples.iter().map(|s| s.0).collect();
         let w: Vec<[f64; 3]> = samples.iter().map(|s| s.1).collect();
         BeatTable::new(&l, &w)
@@ -568,6 +585,7 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
     };
     let ctx = Context {
         kernel,
+        free,
         table,
         built: &built,
         settings: &settings,
@@ -754,7 +772,7 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
     )?;
     let mut lines = vec![format!(
         "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) in {:.2} s ({} pixel(s) by \
-         the parallel-stack kernel, the rest traced exactly)",
+         a kernel, the rest traced exactly)",
         case.spec.name,
         g.columns,
         g.rows,

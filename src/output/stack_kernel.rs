@@ -199,6 +199,34 @@ pub(crate) struct KernelRay {
     paper: Field3,
 }
 
+impl KernelRay {
+    /// A ray of path `path` (rays of one source along one path share it), coherence id,
+    /// Δs (m), reflections from the denser side, and its fields under complex Fresnel and
+    /// under the paper's rules.
+    pub(crate) fn new(
+        path: usize,
+        coherence_id: u64,
+        delta_s_m: f64,
+        denser_reflections: u32,
+        vector: Field3,
+        paper: Field3,
+    ) -> Self {
+        KernelRay {
+            path,
+            coherence_id,
+            delta_s_m,
+            denser_reflections,
+            vector,
+            paper,
+        }
+    }
+
+    /// Sets Δs (m).
+    pub(crate) fn set_delta(&mut self, delta_s_m: f64) {
+        self.delta_s_m = delta_s_m;
+    }
+}
+
 /// The contributions of a pixel's kernel rays under `shading`, phases split as
 /// [`SpectralContribution`] wants: what `render::prepare` makes of the exact trace's arrivals,
 /// formed as [`crate::trace::contribution_with`] forms each rung (docs/PHYSICS.md §4):

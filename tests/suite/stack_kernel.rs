@@ -194,13 +194,27 @@ fn scenes_outside_the_class_fall_back_to_the_exact_trace() {
     let young = fringe::output::figures::young_case().unwrap();
     let mut spreading = plate.clone();
     spreading.spec.trace.spreading = true;
+    let mut young_spreading = young.clone();
+    young_spreading.spec.trace.spreading = true;
+    let library = |name: &str| {
+        fringe::harness::case::load::load(
+            &std::path::Path::new(env!("CARGO_MANIFEST_DIR"))
+                .join("cases")
+                .join(format!("{name}.json")),
+        )
+        .unwrap()
+    };
+    // A line source over a mirror (a surface: neither kernel), and point sources in free
+    // space (not line sources, and no planes).
+    let (lloyd, points) = (library("lloyd_mirror"), library("incoherent_sources"));
     let cases: Vec<(&str, &Case, Vec<Shading>)> = vec![
         // A dispersive medium.
         ("BK7 plate", &dispersive, all_shadings()),
         // Geometric spreading.
         ("plate with spreading", &spreading, all_shadings()),
-        // Slits: no point sources over parallel planes.
-        ("Young", &young, all_shadings()),
+        ("Young with spreading", &young_spreading, all_shadings()),
+        ("Lloyd's mirror", &lloyd, all_shadings()),
+        ("point sources in free space", &points, all_shadings()),
     ];
     for (name, case, shadings) in cases {
         let screen = Screen::from_probe(&case.spec.probe, Some((9, 7))).unwrap();
@@ -419,5 +433,107 @@ proptest! {
             per_shading.join(", ")
         );
         prop_assert!(dev <= bound, "deviation {:e} above {:e}", dev, bound);
+    }
+}
+
+/// Fig. 3's slits through the kernel of line sources without surfaces
+/// (`fringe::output::free_kernel`), every shading: the exact trace's picture to `TOLERANCE`
+/// of its peak, the same arrivals.
+#[test]
+fn the_free_kernel_gives_the_exact_trace_of_young() {
+    let case = fringe::output::figures::young_case().unwrap();
+    let screen = Screen::from_probe(&case.spec.probe, Some((64, 48))).unwrap();
+    for (name, spectrum) in [("white 31", white(31)), ("550 nm", Spectrum::CaseLight)] {
+        let (fast, exact) = both(&case, screen, all_shadings(), spectrum);
+        assert_eq!(fast.kernel_pixels, 64 * 48, "{name}");
+        assert_eq!(fast.paths, exact.paths, "the same arrivals");
+        let dev = max_deviation(&fast, &exact);
+        eprintln!("Young, {name}, every shading: max |kernel − exact| = {dev:e} of the peak");
+        assert!(dev <= TOLERANCE, "{name}: deviation {dev:e}");
+    }
+}
+
+/// Random slits: two or three line sources (random axes, parallel or not, in one or two
+/// coherence groups, random polarizations, perhaps a coherence length among the paths'
+/// lengths) in air or water, a random screen, the whole turned by a random rotation.
+fn random_slits(d: &mut Draw) -> (Case, Screen) {
+    let rot = DQuat::from_euler(
+        glam::EulerRot::ZYX,
+        d.range(-3.0, 3.0),
+        d.range(-1.5, 1.5),
+        d.range(-3.0, 3.0),
+    );
+    let r = |v: DVec3| {
+        let v = rot * v;
+        json!([v.x, v.y, v.z])
+    };
+    let mut v: Value = serde_json::from_str(fringe::output::figures::YOUNG_SCENE).unwrap();
+    let parallel = d.chance(0.5);
+    let count = 2 + usize::from(d.chance(0.3));
+    let mut sources = Vec::new();
+    for k in 0..count {
+        let axis = if parallel {
+            DVec3::Z
+        } else {
+            DVec3::new(d.range(-0.3, 0.3), d.range(-0.3, 0.3), 1.0)
+        };
+        let point = DVec3::new(
+            d.range(-1e-3, 1e-3),
+            d.range(-1e-3, 1e-3),
+            d.range(-1e-3, 1e-3),
+        );
+        let polarization = match (d.unit() * 3.0) as u32 {
+            0 => json!({"unpolarized": {"model": "paper_two_channel",
+                "reference": r(DVec3::new(d.range(-1.0, 1.0), d.range(-1.0, 1.0), 1.0))}}),
+            1 => json!({"linear": {"reference": r(DVec3::new(d.range(-1.0, 1.0), 1.0, 0.3)),
+                "angle_deg": d.range(-90.0, 90.0)}}),
+            _ => json!({"unpolarized": {}}),
+        };
+        let mut src = json!({"name": format!("slit{k}"),
+            "emitter": {"line": {"point_m": r(point), "axis": r(axis)}},
+            "polarization": polarization,
+            "coherence_group": u64::from(d.chance(0.3))});
+        if d.chance(0.2) {
+            src["coherence_length_m"] = json!(d.range(0.05, 0.3));
+        }
+        sources.push(src);
+    }
+    v["scene"]["sources"] = Value::Array(sources);
+    if d.chance(0.3) {
+        v["scene"]["media"]["water"] = json!({"constant": {"n": 1.33}});
+        v["scene"]["ambient"] = json!("water");
+    }
+    let dist = d.range(0.05, 0.3);
+    let side = d.range(1e-3, 2e-2);
+    let g = &mut v["probe"]["grid"];
+    g["center_m"] = r(DVec3::new(dist, d.range(-5e-3, 5e-3), d.range(-5e-3, 5e-3)));
+    g["u_axis"] = r(DVec3::Y);
+    g["v_axis"] = r(DVec3::Z);
+    g["size_m"] = json!([side, side]);
+    if d.chance(0.3) {
+        g["looks_toward"] = r(DVec3::new(-1.0, d.range(-0.2, 0.2), 0.0));
+    }
+    let case = case_of(&v);
+    let screen = Screen::from_probe(&case.spec.probe, Some((9, 8))).unwrap();
+    (case, screen)
+}
+
+proptest! {
+    #![proptest_config(crate::common::config(24))]
+
+    /// Random slits of the free kernel's class, every shading at once: the exact trace's
+    /// picture to `TOLERANCE` of its peak, with the same arrivals, in white light and in
+    /// monochrome.
+    #[test]
+    fn random_slits_at_every_rung_match_the_exact_trace(seed in any::<u64>()) {
+        let mut d = Draw(seed);
+        let (case, screen) = random_slits(&mut d);
+        let spectrum = if d.chance(0.5) { white(21) } else { Spectrum::CaseLight };
+        let (fast, exact) = both(&case, screen, all_shadings(), spectrum);
+        prop_assert_eq!(fast.kernel_pixels, 72, "every pixel by the kernel");
+        prop_assert_eq!(fast.paths, exact.paths, "the same arrivals");
+        let dev = max_deviation(&fast, &exact);
+        eprintln!("slits seed {seed}: max deviation {dev:e}");
+        prop_assert!(dev <= TOLERANCE, "deviation {:e}", dev);
     }
 }
