@@ -161,6 +161,10 @@ pub(crate) struct KernelScratch {
     guess: Vec<[f64; 2]>,
     h: Vec<f64>,
     ref_h: Vec<f64>,
+    /// q_k(p) = √(n_k² − p²) of the slabs the current ray crosses (`h` ≠ 0), and of the
+    /// source's reference ray: each formed once per ray, as `q_of` forms it.
+    q: Vec<f64>,
+    ref_q: Vec<f64>,
     dirs: Vec<DVec3>,
     frames: Vec<Frame>,
 }
@@ -349,6 +353,24 @@ fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> 
 
 fn dot(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
+}
+
+/// A channel's launch field through the events, in the tracer's frames, under complex Fresnel
+/// or (`PAPER`) the paper's coefficients.
+#[inline(always)]
+fn carry<const PAPER: bool>(launch: Field3, frames: &[Frame]) -> Field3 {
+    let mut f = launch;
+    for fr in frames {
+        let [cs, cp] = if PAPER { fr.paper } else { fr.vector };
+        let a_s = cs * dot(&f, fr.s);
+        let a_p = cp * dot(&f, fr.p_i);
+        f = [
+            a_s * fr.s.x + a_p * fr.p_o.x,
+            a_s * fr.s.y + a_p * fr.p_o.y,
+            a_s * fr.s.z + a_p * fr.p_o.z,
+        ];
+    }
+    f
 }
 
 impl StackKernel {
@@ -585,6 +607,8 @@ impl StackKernel {
         s.guess.resize(total, [0.0; 2]);
         s.h.resize(ns, 0.0);
         s.ref_h.resize(ns, 0.0);
+        s.q.resize(ns, 0.0);
+        s.ref_q.resize(ns, 0.0);
         let mut flat = 0;
         for src in &self.sources {
             let v = point - src.position;
@@ -626,18 +650,27 @@ impl StackKernel {
                 if p < 1e-9 {
                     return false;
                 }
-                // Away from grazing in every slab crossed, and from every critical angle.
-                for (&hk, &nk) in s.h.iter().zip(&self.slab_n) {
-                    if hk != 0.0 && (nk - p) * (nk + p) <= 1e-6 * nk * nk {
-                        return false;
+                // Away from grazing in every slab crossed, and from every critical angle; the
+                // cosines of the slabs crossed.
+                for ((&hk, &nk), qk) in s.h.iter().zip(&self.slab_n).zip(s.q.iter_mut()) {
+                    if hk != 0.0 {
+                        if (nk - p) * (nk + p) <= 1e-6 * nk * nk {
+                            return false;
+                        }
+                        *qk = q_of(nk, p);
                     }
                 }
-                // Directions of the segments.
+                // Directions of the segments (every segment's slab is crossed: h ≠ 0).
                 s.dirs.clear();
                 for (i, &slab) in c.seg_slab.iter().enumerate() {
                     let n = self.slab_n[slab];
                     let sg = if i == last { sign_last } else { c.seg_sign[i] };
-                    s.dirs.push((p * u + (sg * q_of(n, p)) * nn) / n);
+                    let q = if s.h[slab] != 0.0 {
+                        s.q[slab]
+                    } else {
+                        q_of(n, p)
+                    };
+                    s.dirs.push((p * u + (sg * q) * nn) / n);
                 }
                 let d_last = s.dirs[last];
                 if !build::records(observer, d_last) {
@@ -653,12 +686,12 @@ impl StackKernel {
                 // Fresnel coefficients and frames of the events.
                 s.frames.clear();
                 for (i, ev) in c.events.iter().enumerate() {
-                    let q2_1 = (ev.n1 - p) * (ev.n1 + p);
                     let q2_2 = (ev.n2 - p) * (ev.n2 + p);
                     if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
                         return false;
                     }
-                    let cos_i = (q2_1.sqrt() / ev.n1).min(1.0);
+                    // n1 cos θi = q of the arriving segment's slab (n1 is its index).
+                    let cos_i = (s.q[c.seg_slab[i]] / ev.n1).min(1.0);
                     let f = if ev.n1 == ev.n2 {
                         fresnel::fresnel(ev.n1, ev.n2, cos_i)
                     } else {
@@ -689,27 +722,32 @@ impl StackKernel {
                 }
                 // The optical path (for the coherence-length rule) and Δs.
                 let mut path = p * d;
-                for (&hk, &nk) in s.h.iter().zip(&self.slab_n) {
+                for (&hk, &qk) in s.h.iter().zip(&s.q) {
                     if hk != 0.0 {
-                        path += hk * q_of(nk, p);
+                        path += hk * qk;
                     }
                 }
                 let delta = match reference {
                     None => {
                         reference = Some(p);
                         s.ref_h.copy_from_slice(&s.h);
+                        s.ref_q.copy_from_slice(&s.q);
                         0.0
                     }
                     Some(pr) => {
                         let mut bracket = d;
                         let mut extra = 0.0;
-                        for ((&hj, &hr), &nk) in s.h.iter().zip(&s.ref_h).zip(&self.slab_n) {
+                        for (k, ((&hj, &hr), &nk)) in
+                            s.h.iter().zip(&s.ref_h).zip(&self.slab_n).enumerate()
+                        {
+                            // q_k(p) of a slab this ray does not cross (hj = 0) is not cached.
+                            let qj = if hj != 0.0 { s.q[k] } else { q_of(nk, p) };
                             if hr != 0.0 {
-                                bracket -= hr * (pr + p) / (q_of(nk, pr) + q_of(nk, p));
+                                bracket -= hr * (pr + p) / (s.ref_q[k] + qj);
                             }
                             let dh = hj - hr;
                             if dh != 0.0 {
-                                extra += dh * q_of(nk, p);
+                                extra += dh * qj;
                             }
                         }
                         (p - pr) * bracket + extra
@@ -742,22 +780,6 @@ impl StackKernel {
                         Complex64::from(e.y * a),
                         Complex64::from(e.z * a),
                     ];
-                    // The channel's field through the events, in the tracer's frames, under
-                    // one model's coefficients.
-                    let carry = |coefficients: fn(&Frame) -> [Complex64; 2]| {
-                        let mut f = launch;
-                        for fr in &s.frames {
-                            let [cs, cp] = coefficients(fr);
-                            let a_s = cs * dot(&f, fr.s);
-                            let a_p = cp * dot(&f, fr.p_i);
-                            f = [
-                                a_s * fr.s.x + a_p * fr.p_o.x,
-                                a_s * fr.s.y + a_p * fr.p_o.y,
-                                a_s * fr.s.z + a_p * fr.p_o.z,
-                            ];
-                        }
-                        f
-                    };
                     let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
                     out.push(KernelRay {
                         path: idx,
@@ -768,9 +790,9 @@ impl StackKernel {
                         },
                         delta_s_m: delta,
                         denser_reflections: c.denser_reflections,
-                        vector: carry(|fr| fr.vector),
+                        vector: carry::<false>(launch, &s.frames),
                         paper: if paper {
-                            carry(|fr| fr.paper)
+                            carry::<true>(launch, &s.frames)
                         } else {
                             [Complex64::default(); 3]
                         },
