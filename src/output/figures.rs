@@ -501,10 +501,11 @@ fn newton_figures() -> Result<Part, String> {
         (Illuminant::D65, Adaptation::None),
         (Illuminant::E, Adaptation::Bradford),
     ] {
-        let csv = colour::write_newton_csv(NEWTON_N, &thick, &cie, ill, adapt)?;
+        // The rows once, for the CSV and the strip.
+        let rows = colour::newton_sequence(NEWTON_N, &thick, &cie, ill, adapt)?;
+        let csv = colour::newton_csv(&rows, NEWTON_N, &cie, ill, adapt);
         part.files
             .push((format!("newton_{}.csv", ill.name()), csv.into_bytes()));
-        let rows = colour::newton_sequence(NEWTON_N, &thick, &cie, ill, adapt)?;
         bands.push((
             format!("{} ({})", ill.name(), adapt.name()),
             rows.iter().map(|r| r.srgb8).collect::<Vec<_>>(),
