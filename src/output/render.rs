@@ -37,7 +37,7 @@
 //! equation (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels
 //! it cannot vouch for, and every other scene, are traced exactly ([`PixelPath::Exact`]
 //! forces that everywhere). Line sources without any surface (Young's slits) have a kernel of
-//! their own, [`crate::output::free_kernel`]: one direct ray per source, its direction and
+//! their own, `output::free_kernel`: one direct ray per source, its direction and
 //! double-double optical path as the path solver forms them. With 16 wavelengths or more, the
 //! kernels' pixels take their
 //! spectral sums from `output::beat_table` (one table read per beat term instead of
@@ -250,7 +250,7 @@ pub struct Render {
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PixelPath {
     /// The parallel-stack kernel ([`crate::output::stack_kernel`]) or the kernel of line
-    /// sources without surfaces ([`crate::output::free_kernel`]) for the pixels they vouch
+    /// sources without surfaces (`output::free_kernel`) for the pixels they vouch
     /// for, where the scene is of their class (any shading); the exact trace everywhere else.
     Auto,
     /// Every pixel traced exactly ([`arrivals_at`]).

@@ -7,13 +7,13 @@
 //!
 //! # Every rung from one pass
 //!
-//! Each ray the kernel finds ([`KernelRay`]) holds what the exact trace's arrival gives the
+//! Each ray the kernel finds (`KernelRay`) holds what the exact trace's arrival gives the
 //! rungs (docs/PHYSICS.md §4; [`crate::trace::contribution_with`]): its coherence id, its path
 //! difference, its field under complex Fresnel, its field under the paper's rules (the same
 //! frames and cosines, [`fresnel::paper_rules`] for the coefficients, only when a picture
 //! asks for `paper_rules`: the paper's ray is launched alike and carries the same optical
 //! path and coherence), and the number of reflections from the denser side (n1 < n2, as the
-//! path solver counts them). [`shade`] forms each shading's contributions from these.
+//! path solver counts them). `shade` forms each shading's contributions from these.
 //!
 //! # What is found once per picture
 //!
