@@ -5,7 +5,9 @@
 //! scene (`figures/plate_amplitude_division.json`) at `vector` fidelity in white light with 81
 //! wavelengths, 300 × 300 pixels (throughput in pixels; the 900 × 900 target is 9× the work):
 //! as `fringe render` does it (the parallel-stack kernel, `fringe::output::stack_kernel`) and
-//! with every pixel traced exactly (`render::render_with(.., PixelPath::Exact)`, `_exact`).
+//! with every pixel traced exactly (`render::render_with(.., PixelPath::Exact)`, `_exact`);
+//! and the two pictures `fringe figures` renders for `fringe check` (the plate at 240 × 240,
+//! 31 wavelengths, six shadings; Fig. 3's slits at 240 × 240), by their kernels and exactly.
 //!
 //! And where a pixel of that picture goes (`pixel` group, one thread, the middle row of the
 //! 900 × 900 screen, 900 pixels): the exact trace of its arrivals (`render::arrivals_at`: plan
@@ -76,6 +78,50 @@ fn bench(c: &mut Criterion) {
             )
         })
     });
+    // What `fringe figures` (and so `fringe check`) renders: the plate at 240 × 240 in white
+    // light with 31 wavelengths at the six shadings of Figs. 5–7 (one kernel pass per pixel
+    // for all six), and Fig. 3's slits at 240 × 240, monochrome (the kernel of line sources
+    // without surfaces); each against every pixel traced exactly (`_exact`).
+    let six = Request {
+        screen: Screen::from_probe(&case.spec.probe, Some((240, 240))).expect("grid probe"),
+        shadings: Fidelity::ALL
+            .into_iter()
+            .map(Shading::Level)
+            .chain([Shading::UnpolarizedScalarJump])
+            .collect(),
+        spectrum: Spectrum::White(
+            SpectralIntegrator::new(
+                &WavelengthGrid::uniform(380e-9, 780e-9, 31).expect("31 samples"),
+                Illuminant::D65,
+            )
+            .expect("CIE tables cover 380–780 nm"),
+        ),
+        progress: false,
+    };
+    let young = load::load(Path::new("figures/young_fig3.json")).expect("figure");
+    let fig3 = Request {
+        screen: Screen::from_probe(&young.spec.probe, Some((240, 240))).expect("grid probe"),
+        shadings: vec![Shading::Level(Fidelity::Vector)],
+        spectrum: Spectrum::CaseLight,
+        progress: false,
+    };
+    group.throughput(Throughput::Elements(240 * 240));
+    for (name, case, req) in [
+        ("figures_plate_240x240_31_six_shadings", &case, &six),
+        ("figures_young_240x240", &young, &fig3),
+    ] {
+        group.bench_function(name, |b| {
+            b.iter(|| black_box(render::render(black_box(case), req).expect("renders")))
+        });
+        group.bench_function(format!("{name}_exact"), |b| {
+            b.iter(|| {
+                black_box(
+                    render::render_with(black_box(case), req, render::PixelPath::Exact)
+                        .expect("renders"),
+                )
+            })
+        });
+    }
     group.finish();
     pixel_split(c, &case);
 }

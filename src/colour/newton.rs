@@ -112,6 +112,18 @@ pub fn write_newton_csv(
     adaptation: Adaptation,
 ) -> Result<String, String> {
     let rows = newton_sequence(n_film, thicknesses_m, grid, illuminant, adaptation)?;
+    Ok(newton_csv(&rows, n_film, grid, illuminant, adaptation))
+}
+
+/// [`write_newton_csv`] of rows already computed by [`newton_sequence`] with these arguments
+/// (so a caller that needs the rows too computes them once).
+pub fn newton_csv(
+    rows: &[NewtonRow],
+    n_film: f64,
+    grid: &WavelengthGrid,
+    illuminant: Illuminant,
+    adaptation: Adaptation,
+) -> String {
     let comment = format!(
         "# fringe::colour::newton_sequence: soap film n_film={n_film} in air, normal incidence, \
          Airy reflectance; illuminant={}, adaptation={}, CIE 1931 2deg, {} samples {:.3}..{:.3} nm\n",
@@ -144,5 +156,5 @@ pub fn write_newton_csv(
             fields
         }),
     );
-    Ok(comment + &table)
+    comment + &table
 }

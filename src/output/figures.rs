@@ -22,7 +22,7 @@ use std::path::Path;
 use std::time::Instant;
 
 /// The Young scene of Fig. 3.
-pub(crate) const YOUNG_SCENE: &str = include_str!("../../figures/young_fig3.json");
+pub const YOUNG_SCENE: &str = include_str!("../../figures/young_fig3.json");
 /// The amplitude-division scene of Figs. 5–8.
 pub const PLATE_SCENE: &str = include_str!("../../figures/plate_amplitude_division.json");
 
@@ -501,10 +501,11 @@ fn newton_figures() -> Result<Part, String> {
         (Illuminant::D65, Adaptation::None),
         (Illuminant::E, Adaptation::Bradford),
     ] {
-        let csv = colour::write_newton_csv(NEWTON_N, &thick, &cie, ill, adapt)?;
+        // The rows once, for the CSV and the strip.
+        let rows = colour::newton_sequence(NEWTON_N, &thick, &cie, ill, adapt)?;
+        let csv = colour::newton_csv(&rows, NEWTON_N, &cie, ill, adapt);
         part.files
             .push((format!("newton_{}.csv", ill.name()), csv.into_bytes()));
-        let rows = colour::newton_sequence(NEWTON_N, &thick, &cie, ill, adapt)?;
         bands.push((
             format!("{} ({})", ill.name(), adapt.name()),
             rows.iter().map(|r| r.srgb8).collect::<Vec<_>>(),

@@ -4,6 +4,7 @@
 pub(crate) mod beat_table;
 #[doc(hidden)]
 pub mod figures;
+pub(crate) mod free_kernel;
 pub mod memory;
 pub mod render;
 #[doc(hidden)]

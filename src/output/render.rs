@@ -29,13 +29,17 @@
 //!
 //! # The parallel-stack kernel
 //!
-//! For point sources over unbounded parallel interfaces (with absorbing rectangular shields) at
-//! `vector` fidelity, non-dispersive, without spreading, the rays of a pixel come from
-//! [`crate::output::stack_kernel`] instead of the exact trace: the sequences' walks through the
-//! slabs are found once per picture and each pixel only solves the 1-D lateral equation
-//! (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels it cannot
-//! vouch for, and every other scene or shading, are traced exactly ([`PixelPath::Exact`]
-//! forces that everywhere). With 16 wavelengths or more, the kernel's pixels take their
+//! For point sources over unbounded parallel interfaces (with absorbing rectangular shields),
+//! non-dispersive, without spreading, the rays of a pixel come from
+//! [`crate::output::stack_kernel`] instead of the exact trace, at every shading (one kernel
+//! pass per pixel feeds all of a picture's shadings, as one trace does): the sequences' walks
+//! through the slabs are found once per picture and each pixel only solves the 1-D lateral
+//! equation (docs/PHYSICS.md §6, "Pictures of point sources over parallel planes"); the pixels
+//! it cannot vouch for, and every other scene, are traced exactly ([`PixelPath::Exact`]
+//! forces that everywhere). Line sources without any surface (Young's slits) have a kernel of
+//! their own, `output::free_kernel`: one direct ray per source, its direction and
+//! double-double optical path as the path solver forms them. With 16 wavelengths or more, the
+//! kernels' pixels take their
 //! spectral sums from `output::beat_table` (one table read per beat term instead of
 //! one phasor per wavelength). `tests/suite/stack_kernel.rs` holds both to the exact trace.
 //!
@@ -45,9 +49,12 @@
 //! --samples 81`: after the 1-D Snell start of the path solver, the skipping of sequences that
 //! cannot reach a pixel, the shared propagation of a source's channels and the beat terms, the
 //! exact trace's profile is flat (solve, reachability test, beats and propagation each 9–15%).
-//! With the kernel (900×900, 81 wavelengths) `StackKernel::contributions` is ~3/4 of the CPU
+//! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU
 //! (about a third of that the lateral Newton), the PNG encoding ~6%; README "Measured numbers"
-//! has the timings.
+//! has the timings. `fringe figures --size 240x240 --samples 31` (what `fringe check` makes),
+//! with every shading and Fig. 3 by the kernels: the renders ~47% of its CPU (the kernel's rays
+//! ~18%, the beat table ~14%), Newton's sequence ~28%, the sRGB step ~8% (`perf record
+//! --call-graph dwarf`, loaded 2-core VM).
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;
@@ -57,7 +64,8 @@ use crate::harness::case::load::Case;
 use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
 use crate::output::beat_table::BeatTable;
-use crate::output::stack_kernel::{KernelScratch, StackKernel};
+use crate::output::free_kernel::{FreeKernel, FreeScratch};
+use crate::output::stack_kernel::{self, KernelRay, KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -233,15 +241,17 @@ pub struct Render {
     pub paths: usize,
     /// Wall time of the render (s).
     pub seconds: f64,
-    /// Pixels whose rays the parallel-stack kernel gave (the rest were traced exactly).
+    /// Pixels whose rays a kernel gave (the parallel-stack kernel, or the kernel of line
+    /// sources without surfaces); the rest were traced exactly.
     pub kernel_pixels: usize,
 }
 
 /// How the rays of a pixel are found.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PixelPath {
-    /// The parallel-stack kernel ([`crate::output::stack_kernel`]) for the pixels it vouches
-    /// for, where the scene and shadings are of its class; the exact trace everywhere else.
+    /// The parallel-stack kernel ([`crate::output::stack_kernel`]) or the kernel of line
+    /// sources without surfaces (`output::free_kernel`) for the pixels they vouch
+    /// for, where the scene is of their class (any shading); the exact trace everywhere else.
     Auto,
     /// Every pixel traced exactly ([`arrivals_at`]).
     Exact,
@@ -359,8 +369,10 @@ struct Context<'a> {
     shadings: &'a [Shading],
     /// Whether some shading needs the rays under the paper's rules.
     paper_rules: bool,
-    /// The parallel-stack kernel, where the scene and shadings are of its class.
+    /// The parallel-stack kernel, where the scene is of its class.
     kernel: Option<StackKernel>,
+    /// The kernel of line sources without surfaces, where the scene is of its class.
+    free: Option<FreeKernel>,
     /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
     table: Option<BeatTable>,
 }
@@ -373,6 +385,8 @@ struct Scratch {
     /// One per shading.
     beats: Vec<Beats>,
     kernel: KernelScratch,
+    free: FreeScratch,
+    kernel_rays: Vec<KernelRay>,
 }
 
 impl Context<'_> {
@@ -402,15 +416,25 @@ impl Context<'_> {
     ) -> (usize, bool) {
         let scene = &self.built.scene;
         s.beats.resize_with(self.shadings.len(), Beats::default);
-        // The kernel serves only `vector` shadings of a non-dispersive scene (`render_with`).
-        if let Some(k) = &self.kernel
-            && k.contributions(point, observer, &mut s.kernel, &mut s.prepared)
-        {
-            for beats in s.beats.iter_mut() {
-                beats.set(&s.prepared);
+        // The kernels serve every shading of a non-dispersive scene (`render_with`).
+        let by_kernel = match (&self.kernel, &self.free) {
+            (Some(k), _) => k.rays(
+                point,
+                observer,
+                self.paper_rules,
+                &mut s.kernel,
+                &mut s.kernel_rays,
+            ),
+            (None, Some(f)) => f.rays(point, observer, &mut s.free, &mut s.kernel_rays),
+            (None, None) => false,
+        };
+        if by_kernel {
+            for (k, sh) in self.shadings.iter().enumerate() {
+                stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
+                s.beats[k].set(&s.prepared);
             }
             self.add_spectral_sums(s, out);
-            return (s.prepared.len(), true);
+            return (s.kernel_rays.len(), true);
         }
         if !self.dispersive {
             let optics = &self.optics[0];
@@ -545,18 +569,17 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
         optics.push(o);
     }
-    let kernel = if path == PixelPath::Auto
-        && !dispersive
-        && req
-            .shadings
-            .iter()
-            .all(|s| *s == Shading::Level(Fidelity::Vector))
-    {
+    let kernel = if path == PixelPath::Auto && !dispersive {
         StackKernel::new(&built.scene, &optics[0], &plans[0], &settings)
     } else {
         None
     };
-    let table = if kernel.is_some() && samples.len() >= 16 {
+    let free = if path == PixelPath::Auto && !dispersive {
+        FreeKernel::new(&built.scene, &optics[0], &settings)
+    } else {
+        None
+    };
+    let table = if (kernel.is_some() || free.is_some()) && samples.len() >= 16 {
         let l: Vec<f64> = samples.iter().map(|s| s.0).collect();
         let w: Vec<[f64; 3]> = samples.iter().map(|s| s.1).collect();
         BeatTable::new(&l, &w)
@@ -565,6 +588,7 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
     };
     let ctx = Context {
         kernel,
+        free,
         table,
         built: &built,
         settings: &settings,
@@ -751,7 +775,7 @@ pub fn run_command(cmd: &Command) -> Result<Vec<String>, String> {
     )?;
     let mut lines = vec![format!(
         "{}: {}x{} points, {} wavelength sample(s){}, {} arrival(s) in {:.2} s ({} pixel(s) by \
-         the parallel-stack kernel, the rest traced exactly)",
+         a kernel, the rest traced exactly)",
         case.spec.name,
         g.columns,
         g.rows,

@@ -1,9 +1,19 @@
 //! A per-pixel kernel for one class of scene: point sources over a stack of parallel,
 //! unbounded dielectric interfaces (plates, films, interfaces), with absorbing rectangular
-//! shields, seen at `vector` fidelity without geometric spreading. For that class the exact
-//! trace ([`crate::trace::arrivals_with`]) is replaced, pixel by pixel, by what it computes in
-//! closed form; where the kernel cannot vouch for a pixel it says so and the render traces that
-//! pixel exactly.
+//! shields, without geometric spreading, at every rung of the fidelity ladder (and the paper's
+//! one scalar ray per path). For that class the exact trace ([`crate::trace::arrivals_with`])
+//! is replaced, pixel by pixel, by what it computes in closed form; where the kernel cannot
+//! vouch for a pixel it says so and the render traces that pixel exactly.
+//!
+//! # Every rung from one pass
+//!
+//! Each ray the kernel finds (`KernelRay`) holds what the exact trace's arrival gives the
+//! rungs (docs/PHYSICS.md §4; [`crate::trace::contribution_with`]): its coherence id, its path
+//! difference, its field under complex Fresnel, its field under the paper's rules (the same
+//! frames and cosines, [`fresnel::paper_rules`] for the coefficients, only when a picture
+//! asks for `paper_rules`: the paper's ray is launched alike and carries the same optical
+//! path and coherence), and the number of reflections from the denser side (n1 < n2, as the
+//! path solver counts them). `shade` forms each shading's contributions from these.
 //!
 //! # What is found once per picture
 //!
@@ -56,11 +66,13 @@
 //! `margin` of the shield's edge or of a segment end, an optical path within 1e-9 of the
 //! source's coherence length, or Newton not converging in 100 steps.
 
+use crate::accumulate::fidelity::Fidelity;
 use crate::harness::case::build;
 use crate::harness::case::spec::Observer;
 use crate::optics::fresnel;
 use crate::optics::interaction::SurfaceOptics;
 use crate::optics::ray::{Field3, INCOHERENT};
+use crate::output::render::Shading;
 use crate::scene::geometry::{Extent, Plane, Rect};
 use crate::scene::source::{Channel, ChannelField, Emitter, field_reference};
 use crate::scene::{Scene, SceneOptics, SurfaceKind};
@@ -99,6 +111,9 @@ struct Compiled {
     p_max: f64,
     /// Whether every event keeps coherence.
     keeps: bool,
+    /// Reflections from the denser side (n1 < n2): the π jumps of `scalar_jump`, counted as the
+    /// path solver counts them (`SolvedPath::denser_reflections`).
+    denser_reflections: u32,
 }
 
 /// An absorbing rectangle.
@@ -146,9 +161,134 @@ pub(crate) struct KernelScratch {
     guess: Vec<[f64; 2]>,
     h: Vec<f64>,
     ref_h: Vec<f64>,
+    /// q_k(p) = √(n_k² − p²) of the slabs the current ray crosses (`h` ≠ 0), and of the
+    /// source's reference ray: each formed once per ray, as `q_of` forms it.
+    q: Vec<f64>,
+    ref_q: Vec<f64>,
     dirs: Vec<DVec3>,
-    /// Per event: s, d_i × s, d_o × s, c_s, c_p.
-    frames: Vec<(DVec3, DVec3, DVec3, Complex64, Complex64)>,
+    frames: Vec<Frame>,
+}
+
+/// One event of a pixel's path: the tracer's frames and the coefficients of both models.
+#[derive(Clone, Copy, Debug)]
+struct Frame {
+    /// s, p_i = d_i × s, p_o = d_o × s.
+    s: DVec3,
+    p_i: DVec3,
+    p_o: DVec3,
+    /// (c_s, c_p) of complex Fresnel (`vector`).
+    vector: [Complex64; 2],
+    /// (c_s, c_p) under the paper's rules ([`fresnel::paper_rules`]); unused unless asked for.
+    paper: [Complex64; 2],
+}
+
+/// One ray of a pixel as the kernel finds it: what every rung of the ladder forms its
+/// contribution from ([`shade`]), as [`crate::trace::contribution_with`] forms it from an
+/// [`crate::trace::Arrival`].
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct KernelRay {
+    /// The (source, sequence) the ray travels: the channels of one source along one path share
+    /// it and are consecutive.
+    path: usize,
+    /// Coherence id of the ray (the `vector` and the paper's ray share it: same events, same
+    /// optical path).
+    coherence_id: u64,
+    /// Optical path minus the pixel's reference (its source's first ray) (m).
+    delta_s_m: f64,
+    /// Reflections from the denser side along the path (`scalar_jump`'s π jumps).
+    denser_reflections: u32,
+    /// The field under complex Fresnel.
+    vector: Field3,
+    /// The field under the paper's rules (zero unless asked for).
+    paper: Field3,
+}
+
+impl KernelRay {
+    /// A ray of path `path` (rays of one source along one path share it), coherence id,
+    /// Δs (m), reflections from the denser side, and its fields under complex Fresnel and
+    /// under the paper's rules.
+    pub(crate) fn new(
+        path: usize,
+        coherence_id: u64,
+        delta_s_m: f64,
+        denser_reflections: u32,
+        vector: Field3,
+        paper: Field3,
+    ) -> Self {
+        KernelRay {
+            path,
+            coherence_id,
+            delta_s_m,
+            denser_reflections,
+            vector,
+            paper,
+        }
+    }
+
+    /// Sets Δs (m).
+    pub(crate) fn set_delta(&mut self, delta_s_m: f64) {
+        self.delta_s_m = delta_s_m;
+    }
+}
+
+/// The contributions of a pixel's kernel rays under `shading`, phases split as
+/// [`SpectralContribution`] wants: what `render::prepare` makes of the exact trace's arrivals,
+/// formed as [`crate::trace::contribution_with`] forms each rung (docs/PHYSICS.md §4):
+/// `incoherent` and the scalar rungs carry √I of the ray's exact (`vector`) intensity
+/// I = Σ|E|² (`incoherent` with id 0, `scalar_jump` with ½ cycle per reflection from the
+/// denser side), `paper_rules` the field under the paper's coefficients, `vector` the
+/// complex-Fresnel field; [`Shading::UnpolarizedScalarJump`] one scalar ray per path carrying
+/// the power of all its channels. Every λ-independent phase is exactly what the rung adds:
+/// the exact trace's `extra_cycles` differ from it by whole cycles and the rounding of the
+/// double-double phase reduction (≲ 1e-15 cycles).
+pub(crate) fn shade(rays: &[KernelRay], shading: Shading, out: &mut Vec<SpectralContribution>) {
+    out.clear();
+    let scalar = |amplitude: f64| {
+        [
+            Complex64::from(amplitude),
+            Complex64::default(),
+            Complex64::default(),
+        ]
+    };
+    let power = |e: &Field3| e.iter().map(|c| c.norm_sqr()).sum::<f64>();
+    match shading {
+        Shading::Level(level) => out.extend(rays.iter().map(|r| {
+            let (coherence_id, extra_cycles, field) = match level {
+                Fidelity::Incoherent => (INCOHERENT, 0.0, scalar(power(&r.vector).sqrt())),
+                Fidelity::Scalar => (r.coherence_id, 0.0, scalar(power(&r.vector).sqrt())),
+                Fidelity::ScalarJump => (
+                    r.coherence_id,
+                    0.5 * r.denser_reflections as f64,
+                    scalar(power(&r.vector).sqrt()),
+                ),
+                Fidelity::PaperRules => (r.coherence_id, 0.0, r.paper),
+                Fidelity::Vector => (r.coherence_id, 0.0, r.vector),
+            };
+            SpectralContribution {
+                coherence_id,
+                delta_s_m: r.delta_s_m,
+                extra_cycles,
+                field,
+            }
+        })),
+        Shading::UnpolarizedScalarJump => {
+            let mut k = 0;
+            while k < rays.len() {
+                let first = &rays[k];
+                let mut p = 0.0;
+                while k < rays.len() && rays[k].path == first.path {
+                    p += power(&rays[k].vector);
+                    k += 1;
+                }
+                out.push(SpectralContribution {
+                    coherence_id: first.coherence_id,
+                    delta_s_m: first.delta_s_m,
+                    extra_cycles: 0.5 * first.denser_reflections as f64,
+                    field: scalar(p.sqrt()),
+                });
+            }
+        }
+    }
 }
 
 impl KernelScratch {
@@ -213,6 +353,24 @@ fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> 
 
 fn dot(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
+}
+
+/// A channel's launch field through the events, in the tracer's frames, under complex Fresnel
+/// or (`PAPER`) the paper's coefficients.
+#[inline(always)]
+fn carry<const PAPER: bool>(launch: Field3, frames: &[Frame]) -> Field3 {
+    let mut f = launch;
+    for fr in frames {
+        let [cs, cp] = if PAPER { fr.paper } else { fr.vector };
+        let a_s = cs * dot(&f, fr.s);
+        let a_p = cp * dot(&f, fr.p_i);
+        f = [
+            a_s * fr.s.x + a_p * fr.p_o.x,
+            a_s * fr.s.y + a_p * fr.p_o.y,
+            a_s * fr.s.z + a_p * fr.p_o.z,
+        ];
+    }
+    f
 }
 
 impl StackKernel {
@@ -369,6 +527,7 @@ impl StackKernel {
             mid: vec![0.0; slab_n.len()],
             p_max: slab_n[slab],
             keeps: true,
+            denser_reflections: 0,
         };
         for (i, ev) in seq.iter().enumerate() {
             let j = plane_of(ev.surface)?;
@@ -420,19 +579,21 @@ impl StackKernel {
         // The last segment's direction (the first one's for a direct path is the pixel's).
         c.seg_sign.push(sign);
         c.keeps = c.events.iter().all(|e| e.keeps);
+        c.denser_reflections = c.events.iter().filter(|e| e.reflect && e.n1 < e.n2).count() as u32;
         Some(c)
     }
 
-    /// The `vector` contributions of the rays reaching `point` (seen by `observer`), in the
-    /// exact trace's order, into `out` (phases split as [`SpectralContribution`] wants, Δs
-    /// relative to each source's first ray); `false` (with `out` undefined) where the pixel
-    /// must be traced exactly (module docs).
-    pub(crate) fn contributions(
+    /// The rays reaching `point` (seen by `observer`), in the exact trace's order, into `out`
+    /// (Δs relative to each source's first ray; the fields under the paper's rules too when
+    /// `paper`), for [`shade`] to form any rung's contributions from; `false` (with `out`
+    /// undefined) where the pixel must be traced exactly (module docs).
+    pub(crate) fn rays(
         &self,
         point: DVec3,
         observer: &Observer,
+        paper: bool,
         s: &mut KernelScratch,
-        out: &mut Vec<SpectralContribution>,
+        out: &mut Vec<KernelRay>,
     ) -> bool {
         out.clear();
         let nn = self.normal;
@@ -446,6 +607,8 @@ impl StackKernel {
         s.guess.resize(total, [0.0; 2]);
         s.h.resize(ns, 0.0);
         s.ref_h.resize(ns, 0.0);
+        s.q.resize(ns, 0.0);
+        s.ref_q.resize(ns, 0.0);
         let mut flat = 0;
         for src in &self.sources {
             let v = point - src.position;
@@ -487,18 +650,27 @@ impl StackKernel {
                 if p < 1e-9 {
                     return false;
                 }
-                // Away from grazing in every slab crossed, and from every critical angle.
-                for (&hk, &nk) in s.h.iter().zip(&self.slab_n) {
-                    if hk != 0.0 && (nk - p) * (nk + p) <= 1e-6 * nk * nk {
-                        return false;
+                // Away from grazing in every slab crossed, and from every critical angle; the
+                // cosines of the slabs crossed.
+                for ((&hk, &nk), qk) in s.h.iter().zip(&self.slab_n).zip(s.q.iter_mut()) {
+                    if hk != 0.0 {
+                        if (nk - p) * (nk + p) <= 1e-6 * nk * nk {
+                            return false;
+                        }
+                        *qk = q_of(nk, p);
                     }
                 }
-                // Directions of the segments.
+                // Directions of the segments (every segment's slab is crossed: h ≠ 0).
                 s.dirs.clear();
                 for (i, &slab) in c.seg_slab.iter().enumerate() {
                     let n = self.slab_n[slab];
                     let sg = if i == last { sign_last } else { c.seg_sign[i] };
-                    s.dirs.push((p * u + (sg * q_of(n, p)) * nn) / n);
+                    let q = if s.h[slab] != 0.0 {
+                        s.q[slab]
+                    } else {
+                        q_of(n, p)
+                    };
+                    s.dirs.push((p * u + (sg * q) * nn) / n);
                 }
                 let d_last = s.dirs[last];
                 if !build::records(observer, d_last) {
@@ -514,12 +686,12 @@ impl StackKernel {
                 // Fresnel coefficients and frames of the events.
                 s.frames.clear();
                 for (i, ev) in c.events.iter().enumerate() {
-                    let q2_1 = (ev.n1 - p) * (ev.n1 + p);
                     let q2_2 = (ev.n2 - p) * (ev.n2 + p);
                     if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
                         return false;
                     }
-                    let cos_i = (q2_1.sqrt() / ev.n1).min(1.0);
+                    // n1 cos θi = q of the arriving segment's slab (n1 is its index).
+                    let cos_i = (s.q[c.seg_slab[i]] / ev.n1).min(1.0);
                     let f = if ev.n1 == ev.n2 {
                         fresnel::fresnel(ev.n1, ev.n2, cos_i)
                     } else {
@@ -529,36 +701,53 @@ impl StackKernel {
                     let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
                         return false;
                     };
-                    let (cs, cp) = if ev.reflect {
-                        (f.r_s, f.r_p)
-                    } else {
-                        (f.t_s, f.t_p)
+                    let pick = |f: fresnel::FresnelCoefficients| {
+                        if ev.reflect {
+                            [f.r_s, f.r_p]
+                        } else {
+                            [f.t_s, f.t_p]
+                        }
                     };
-                    s.frames.push((sv, d_i.cross(sv), d_o.cross(sv), cs, cp));
+                    s.frames.push(Frame {
+                        s: sv,
+                        p_i: d_i.cross(sv),
+                        p_o: d_o.cross(sv),
+                        vector: pick(f),
+                        paper: if paper {
+                            pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i))
+                        } else {
+                            [Complex64::default(); 2]
+                        },
+                    });
                 }
                 // The optical path (for the coherence-length rule) and Δs.
                 let mut path = p * d;
-                for (&hk, &nk) in s.h.iter().zip(&self.slab_n) {
+                for (&hk, &qk) in s.h.iter().zip(&s.q) {
                     if hk != 0.0 {
-                        path += hk * q_of(nk, p);
+                        path += hk * qk;
                     }
                 }
                 let delta = match reference {
                     None => {
                         reference = Some(p);
                         s.ref_h.copy_from_slice(&s.h);
+                        s.ref_q.copy_from_slice(&s.q);
                         0.0
                     }
                     Some(pr) => {
                         let mut bracket = d;
                         let mut extra = 0.0;
-                        for ((&hj, &hr), &nk) in s.h.iter().zip(&s.ref_h).zip(&self.slab_n) {
+                        for (k, ((&hj, &hr), &nk)) in
+                            s.h.iter().zip(&s.ref_h).zip(&self.slab_n).enumerate()
+                        {
+                            // q_k(p) of a slab this ray does not cross (hj = 0) is not cached.
+                            let qj = if hj != 0.0 { s.q[k] } else { q_of(nk, p) };
                             if hr != 0.0 {
-                                bracket -= hr * (pr + p) / (q_of(nk, pr) + q_of(nk, p));
+                                bracket -= hr * (pr + p) / (s.ref_q[k] + qj);
                             }
                             let dh = hj - hr;
                             if dh != 0.0 {
-                                extra += dh * q_of(nk, p);
+                                extra += dh * qj;
                             }
                         }
                         (p - pr) * bracket + extra
@@ -586,30 +775,27 @@ impl StackKernel {
                         None => ch.launch(d0),
                     };
                     let a = amp * ch.intensity.sqrt();
-                    let mut f: Field3 = [
+                    let launch: Field3 = [
                         Complex64::from(e.x * a),
                         Complex64::from(e.y * a),
                         Complex64::from(e.z * a),
                     ];
-                    for &(sv, pi, po, cs, cp) in &s.frames {
-                        let a_s = cs * dot(&f, sv);
-                        let a_p = cp * dot(&f, pi);
-                        f = [
-                            a_s * sv.x + a_p * po.x,
-                            a_s * sv.y + a_p * po.y,
-                            a_s * sv.z + a_p * po.z,
-                        ];
-                    }
                     let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
-                    out.push(SpectralContribution {
+                    out.push(KernelRay {
+                        path: idx,
                         coherence_id: if coherent {
                             ch.coherence_id
                         } else {
                             INCOHERENT
                         },
                         delta_s_m: delta,
-                        extra_cycles: 0.0,
-                        field: f,
+                        denser_reflections: c.denser_reflections,
+                        vector: carry::<false>(launch, &s.frames),
+                        paper: if paper {
+                            carry::<true>(launch, &s.frames)
+                        } else {
+                            [Complex64::default(); 3]
+                        },
                     });
                 }
             }
