@@ -11,6 +11,7 @@
 //!   set of images shown together) equal 1.
 
 use crate::colour::{self, Adaptation, Illuminant};
+use rayon::prelude::*;
 
 /// An 8-bit sRGB picture, row-major, row 0 at the top.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -132,7 +133,7 @@ pub fn monochrome(
 ) -> Rgb8Image {
     let hue = colour::wavelength_to_srgb_hue(lambda_m);
     let pixels = intensity
-        .iter()
+        .par_iter()
         .map(|&i| {
             let t = if scale > 0.0 { i / scale } else { 0.0 };
             colour::to_srgb8(hue.map(|h| h * t))
@@ -155,7 +156,7 @@ pub fn colour(
     adaptation: Adaptation,
 ) -> Rgb8Image {
     let pixels = xyz
-        .iter()
+        .par_iter()
         .map(|p| colour::xyz_to_srgb8(p.map(|c| c * exposure), illuminant, adaptation).srgb8)
         .collect();
     Rgb8Image {
