@@ -138,11 +138,16 @@ impl Arrival {
     /// new trace at `lambda_m` gives, so a spectrum is traced once.
     pub fn at_wavelength(&self, lambda_m: f64) -> Arrival {
         let mut a = self.clone();
-        a.vector.wavelength_m = lambda_m;
-        if let Some(p) = &mut a.paper {
+        a.set_wavelength(lambda_m);
+        a
+    }
+
+    /// [`Arrival::at_wavelength`] in place: the rays' vacuum wavelength set to `lambda_m`.
+    pub fn set_wavelength(&mut self, lambda_m: f64) {
+        self.vector.wavelength_m = lambda_m;
+        if let Some(p) = &mut self.paper {
             p.wavelength_m = lambda_m;
         }
-        a
     }
 }
 

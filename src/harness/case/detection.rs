@@ -13,7 +13,7 @@
 use super::build;
 use super::load::{Case, CaseError};
 use super::reference::MetricKind;
-use super::run::{CaseResult, trace_point};
+use super::run::{CaseResult, Traced, trace_point};
 use crate::accumulate::fidelity::Fidelity;
 use crate::accumulate::{Accumulator, Contribution};
 use crate::optics::double_double::DoubleDouble;
@@ -85,8 +85,8 @@ pub fn detection_floors(
         .par_iter()
         .map(|&i| {
             let mut per_lambda = Vec::new();
-            trace_point(case, &points[i], |_, _, sample| {
-                per_lambda.push((sample.weight * sample.factor, sample.arrivals));
+            trace_point(case, &points[i], &mut Traced::default(), |_, _, sample| {
+                per_lambda.push((sample.weight * sample.factor, sample.arrivals.to_vec()));
                 Ok(())
             })?;
             Ok(per_lambda)

@@ -262,7 +262,7 @@ fn gaussian(light: &Light) -> Option<(f64, f64)> {
 }
 
 /// One spectral sample of a probe point as traced.
-pub(super) struct Sample {
+pub(super) struct Sample<'a> {
     /// Index in the spectrum, vacuum wavelength (m) and spectral weight.
     pub index: usize,
     pub lambda_m: f64,
@@ -272,18 +272,67 @@ pub(super) struct Sample {
     pub target: Option<Target>,
     /// The factor from |E|² to the probe's observable ([`reference::observable_factor`]).
     pub factor: f64,
-    pub arrivals: Vec<Arrival>,
+    /// The sample's arrivals, lent: a visitor that keeps them copies them (they are the
+    /// arrivals the next sample of a non-dispersive spectrum starts from, [`Traced`]).
+    pub arrivals: &'a [Arrival],
+    /// Whether `arrivals` were traced for this sample (`false`: the previous sample's, or a
+    /// previous point's, at this sample's wavelength, [`Traced`]); what a visitor derives from
+    /// the arrivals' paths alone stays valid while this is `false`.
+    pub retraced: bool,
     /// The scene's optics at `lambda_m` (built once per sample, for the tracer and the
     /// conditioning terms alike).
     pub optics: crate::scene::SceneOptics,
 }
 
+/// What a traced sample's arrivals depend on besides the wavelength they carry: the scene,
+/// the observer, the internal-reflection budget, the indices at the sample's wavelength and
+/// the target.
+#[derive(Clone, Debug, PartialEq)]
+struct TraceKey {
+    scene: crate::scene::Scene,
+    observer: Observer,
+    budget: (usize, bool),
+    ambient_index: f64,
+    surfaces: Vec<Option<crate::optics::interaction::SurfaceOptics>>,
+    target: Target,
+}
+
+/// The arrivals last traced, and what they were traced for ([`TraceKey`]). A sample with the
+/// same key has the same arrivals at its own wavelength ([`Arrival::at_wavelength`]: tracing
+/// uses the wavelength only through the indices and stores it in the rays), so a spectrum
+/// through non-dispersive media, and a wavelength sweep over one scene, is traced once and its
+/// arrivals are set to each sample's wavelength in place: the same arrivals, bit for bit, as a
+/// trace at that wavelength. Not across a total internal reflection or a tunnelling (a
+/// frustrated layer's coupling depends on the wavelength through its thickness,
+/// docs/PHYSICS.md §5): such arrivals are traced at every sample.
+#[derive(Default)]
+pub(super) struct Traced {
+    key: Option<TraceKey>,
+    arrivals: Vec<Arrival>,
+}
+
+impl Traced {
+    /// Whether arrivals traced at one wavelength are, at another with the same indices, the
+    /// same arrivals with that wavelength ([`Traced`]).
+    fn wavelength_free(arrivals: &[Arrival]) -> bool {
+        arrivals.iter().all(|a| {
+            !a.path.has_tir
+                && a.path
+                    .sequence
+                    .iter()
+                    .all(|e| e.kind != EventKind::Tunnel)
+        })
+    }
+}
+
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
 /// spectral sample traced, one at a time (a point's arrivals over a long spectrum are never
-/// held together).
+/// held together). `traced` holds the arrivals last traced (by this point or a previous one)
+/// and is reused where they are the arrivals a new trace would give ([`Traced`]).
 pub(super) fn trace_point(
     case: &Case,
     pt: &ProbePoint,
+    traced: &mut Traced,
     mut visit: impl FnMut(&Built, &[(f64, f64)], Sample) -> Result<(), CaseError>,
 ) -> Result<(Built, usize), CaseError> {
     let spec = &case.spec;
@@ -293,10 +342,12 @@ pub(super) fn trace_point(
     let b = budget(case, &built, spectrum[spectrum.len() / 2].0)?;
     let internal = b.internal;
     let st = settings(case, &built, internal);
-    // The last traced sample's indices, target and arrivals: a sample with the same indices
-    // and target (non-dispersive media) has the same arrivals at its own wavelength
-    // ([`Arrival::at_wavelength`]), so a spectrum through such a scene is traced once.
-    let mut last: Option<(crate::scene::SceneOptics, Target, Vec<Arrival>)> = None;
+    // A previous point's arrivals serve only the same scene, observer and budget.
+    if traced.key.as_ref().is_some_and(|k| {
+        k.budget != (b.internal, b.closed) || k.observer != pt.observer || k.scene != built.scene
+    }) {
+        traced.key = None;
+    }
     for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
         let optics = built
             .scene
@@ -312,69 +363,80 @@ pub(super) fn trace_point(
                 weight,
                 target: None,
                 factor: 0.0,
-                arrivals: Vec::new(),
+                arrivals: &[],
+                retraced: true,
                 optics,
             };
             visit(&built, &spectrum, sample)?;
             continue;
         };
-        let arrivals = match &last {
-            Some((o, t, arr))
-                if *t == target
-                    && o.ambient_index == optics.ambient_index
-                    && o.surfaces == optics.surfaces =>
-            {
-                arr.iter().map(|a| a.at_wavelength(lambda_m)).collect()
+        let reuse = traced.key.as_ref().is_some_and(|k| {
+            k.target == target
+                && k.ambient_index == optics.ambient_index
+                && k.surfaces == optics.surfaces
+        });
+        if reuse {
+            for a in &mut traced.arrivals {
+                a.set_wavelength(lambda_m);
             }
-            _ => {
-                let mut arr = arrivals_at(
-                    &built,
-                    &optics,
-                    &target,
-                    &pt.observer,
-                    &st,
-                    &required_paths(case, &built),
-                )
-                .map_err(|e| {
-                    // A reference that refuses this point itself (frustrated total reflection,
-                    // an unresolvable grazing entry) names the scene's own limit: its reason wins.
-                    let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
-                        matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
-                            .then(|| {
-                                reference::value(
-                                    &r.model,
-                                    &built,
-                                    &target,
-                                    lambda_m,
-                                    spec.trace.spreading,
-                                )
-                                .err()
-                            })
-                            .flatten()
-                            .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
-                    });
-                    refused.unwrap_or_else(|| case_err(case, "$.probe", e))
+        } else {
+            traced.key = None;
+            let mut arr = arrivals_at(
+                &built,
+                &optics,
+                &target,
+                &pt.observer,
+                &st,
+                &required_paths(case, &built),
+            )
+            .map_err(|e| {
+                // A reference that refuses this point itself (frustrated total reflection,
+                // an unresolvable grazing entry) names the scene's own limit: its reason wins.
+                let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
+                    matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
+                        .then(|| {
+                            reference::value(
+                                &r.model,
+                                &built,
+                                &target,
+                                lambda_m,
+                                spec.trace.spreading,
+                            )
+                            .err()
+                        })
+                        .flatten()
+                        .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
+                });
+                refused.unwrap_or_else(|| case_err(case, "$.probe", e))
+            })?;
+            // Beyond the cap: the orders past the traced ones, closed exactly.
+            if b.closed {
+                trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
+                    case_err(
+                        case,
+                        "$.trace.airy_tail_epsilon",
+                        format!(
+                            "the Airy tail bound needs more internal reflections than the \
+                             cap of {} here (near grazing incidence), and the tail cannot \
+                             be closed exactly: {e}; loosen airy_tail_epsilon or move the \
+                             probe away from grazing",
+                            super::load::limits::MAX_INTERNAL_REFLECTIONS
+                        ),
+                    )
                 })?;
-                // Beyond the cap: the orders past the traced ones, closed exactly.
-                if b.closed {
-                    trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
-                        case_err(
-                            case,
-                            "$.trace.airy_tail_epsilon",
-                            format!(
-                                "the Airy tail bound needs more internal reflections than the \
-                                 cap of {} here (near grazing incidence), and the tail cannot \
-                                 be closed exactly: {e}; loosen airy_tail_epsilon or move the \
-                                 probe away from grazing",
-                                super::load::limits::MAX_INTERNAL_REFLECTIONS
-                            ),
-                        )
-                    })?;
-                }
-                last = Some((optics.clone(), target, arr.clone()));
-                arr
             }
-        };
+            if Traced::wavelength_free(&arr) {
+                traced.key = Some(TraceKey {
+                    scene: built.scene.clone(),
+                    observer: pt.observer.clone(),
+                    budget: (b.internal, b.closed),
+                    ambient_index: optics.ambient_index,
+                    surfaces: optics.surfaces.clone(),
+                    target,
+                });
+            }
+            traced.arrivals = arr;
+        }
         // |E|² → the observable the probe measures (R or T of a plane wave in the far field).
         let factor = reference::observable_factor(&pt.observer, &built, &target, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?;
@@ -384,7 +446,8 @@ pub(super) fn trace_point(
             weight,
             target: Some(target),
             factor,
-            arrivals,
+            arrivals: &traced.arrivals,
+            retraced: !reuse,
             optics,
         };
         visit(&built, &spectrum, sample)?;
@@ -399,6 +462,7 @@ fn run_point(
     pt: &ProbePoint,
     levels: &[Fidelity],
     keep: bool,
+    traced: &mut Traced,
 ) -> Result<PointOut, CaseError> {
     let spec = &case.spec;
     let mut out = PointOut {
@@ -415,7 +479,6 @@ fn run_point(
         kept: Vec::new(),
     };
     let mut kept = Vec::new();
-    let mut center_arrivals = Vec::new();
     let mut center_target = None;
     let mut center = 0.0;
     let mut acc = Accumulator::new();
@@ -423,14 +486,15 @@ fn run_point(
     // The `vector` contributions of the sample, for the conditioning terms.
     let mut vector = Vec::new();
     let mut cycles = Vec::new();
-    let (built, internal) = trace_point(case, pt, |built, spectrum, sample| {
+    let (built, internal) = trace_point(case, pt, traced, |built, spectrum, sample| {
         let Sample {
             index: k,
             lambda_m: lambda,
             weight: w,
             target,
             factor,
-            arrivals: mut arr,
+            arrivals: arr,
+            retraced: _,
             optics,
         } = sample;
         // `trace::intensity` of each level, with the accumulator and contributions reused
@@ -567,12 +631,20 @@ fn run_point(
         }
         if k == spectrum.len() / 2 {
             out.arrivals = arr.len();
-            out.needs = trace::needs(&arr);
-            center_arrivals = if keep {
-                arr.clone()
-            } else {
-                std::mem::take(&mut arr)
-            };
+            out.needs = trace::needs(arr);
+            // Retardance and visibility are measured on the centre sample's arrivals.
+            for (ri, r) in spec.references.iter().enumerate() {
+                if matches!(
+                    reference::kind(&r.model),
+                    MetricKind::Retardance | MetricKind::Visibility
+                ) {
+                    for l in levels {
+                        if let Some(v) = special_value(&r.model, built, arr, *l) {
+                            out.special[ri].insert(*l, v);
+                        }
+                    }
+                }
+            }
             // Dark by physics: no transmitted wave, or a film beyond its top face's critical
             // angle whose transmittance is negligible (frustrated total reflection).
             out.evanescent = target.is_none()
@@ -584,7 +656,7 @@ fn run_point(
             center = lambda;
         }
         if keep {
-            kept.push((w * factor, arr));
+            kept.push((w * factor, arr.to_vec()));
         }
         Ok(())
     })?;
@@ -615,11 +687,6 @@ fn run_point(
                 if ri == 0 {
                     out.phase_representation =
                         reference::phase_representation(&r.model, &built, center);
-                }
-                for l in levels {
-                    if let Some(v) = special_value(&r.model, &built, &center_arrivals, *l) {
-                        out.special[ri].insert(*l, v);
-                    }
                 }
             }
             MetricKind::Intensity
@@ -667,12 +734,15 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
     // The points the detection floors sample keep their arrivals: the floors are measured on
     // the very arrivals traced here, not on a second trace of them.
     let sampled = super::detection::sampled_points(points.len());
+    // Each worker keeps the arrivals it traced last: a wavelength sweep over one
+    // non-dispersive scene is traced once per worker ([`Traced`]; the same arrivals, bit for
+    // bit, whichever points a worker runs).
     let outs: Vec<PointOut> = points
         .par_iter()
         .enumerate()
-        .map(|(i, pt)| {
+        .map_init(Traced::default, |traced, (i, pt)| {
             let keep = convergence_report && sampled.binary_search(&i).is_ok();
-            run_point(case, pt, &levels, keep)
+            run_point(case, pt, &levels, keep, traced)
         })
         .collect::<Vec<_>>()
         .into_iter()
