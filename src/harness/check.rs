@@ -415,9 +415,15 @@ pub(crate) fn evaluate<T: Send>(
     );
     let results: Vec<CaseResult> = results.into_iter().collect::<Result<_, _>>()?;
 
-    let mut rows = Vec::new();
-    let mut goldens = Vec::new();
-    for (k, (case, r)) in cases.iter().zip(&results).enumerate() {
+    // Each case's rows and golden comparison, side by side (each reads only its own golden
+    // file); collected in case order, so the first corrupt golden file in file order is the
+    // error reported, as a loop over the cases would report it.
+    type CaseVerdict = (Vec<Row>, Option<(PathBuf, String, String)>);
+    let verdicts: Vec<Result<CaseVerdict, InputError>> = cases
+        .par_iter()
+        .zip(&results)
+        .enumerate()
+        .map(|(k, (case, r))| -> Result<CaseVerdict, InputError> {
         let mut case_rows = verdict::rows(r);
         // A NaN deviation compares false with every tolerance and would read as a pass: any
         // non-finite traced or closed-form value fails the case.
@@ -449,7 +455,6 @@ pub(crate) fn evaluate<T: Send>(
             });
         }
         let golden_path = golden_dirs[k].join(format!("{}.csv", r.name));
-        let text = verdict::golden_csv(r);
         // The case's golden tolerance, or its values' conditioning when larger (golden files
         // are reproducible across CPUs to their conditioning, not bit for bit).
         let golden_tolerance = verdict::golden_tolerance(case, r);
@@ -464,8 +469,13 @@ pub(crate) fn evaluate<T: Send>(
             seconds: 0.0,
             note,
         };
+        let mut golden = None;
         if opts.bless {
-            goldens.push((golden_dirs[k].clone(), format!("{}.csv", r.name), text));
+            golden = Some((
+                golden_dirs[k].clone(),
+                format!("{}.csv", r.name),
+                verdict::golden_csv(r),
+            ));
         } else {
             match std::fs::read_to_string(&golden_path) {
                 Err(_) => case_rows.push(golden_row(
@@ -495,7 +505,15 @@ pub(crate) fn evaluate<T: Send>(
                 },
             }
         }
+        Ok((case_rows, golden))
+        })
+        .collect();
+    let mut rows = Vec::new();
+    let mut goldens = Vec::new();
+    for v in verdicts {
+        let (case_rows, golden) = v?;
         rows.extend(case_rows);
+        goldens.extend(golden);
     }
 
     // The stability sweep: judged like a case.

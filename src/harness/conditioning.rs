@@ -240,17 +240,18 @@ pub fn intensity_rounding(
         let ds = (a.vector.optical_path - reference).to_f64().abs();
         let dphi = std::f64::consts::TAU * cu * (ds / lambda_m + 1.0);
         let mut da = cu * (a.path.sequence.len() as f64 + 1.0);
-        let x = a
-            .path
-            .points
-            .iter()
-            .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
+        // X, the largest coordinate of the event points, and ℓ, the path's length, in one
+        // walk over the points (a shared trail is walked from its end, [`Trail::iter`]).
+        let mut x = 0.0f64;
+        let mut previous: Option<DVec3> = None;
         let ell: f64 = a
             .path
             .points
             .iter()
-            .zip(a.path.points.iter().skip(1))
-            .map(|(p, q)| (*q - *p).length())
+            .filter_map(|q| {
+                x = x.max(q.abs().max_element());
+                previous.replace(*q).map(|p| (*q - p).length())
+            })
             .sum::<f64>()
             .max(f64::MIN_POSITIVE);
         if a.path.spreading != 1.0 {
@@ -267,13 +268,14 @@ pub fn intensity_rounding(
         // directions follow from its own direction and Snell's law, whatever the points.
         let plane_wave = from_plane_wave(scene, a);
         let tilt = if plane_wave { 0.0 } else { cu * x / ell };
-        let events = a
-            .path
-            .sequence
-            .iter()
-            .zip(a.path.dirs.iter())
-            .zip(a.path.indices.iter());
-        for ((ev, d_in), &n_in) in events.filter(|_| tilt > 0.0) {
+        let events = (tilt > 0.0).then(|| {
+            a.path
+                .sequence
+                .iter()
+                .zip(a.path.dirs.iter())
+                .zip(a.path.indices.iter())
+        });
+        for ((ev, d_in), &n_in) in events.into_iter().flatten() {
             let Some(so) = optics.surfaces.get(ev.surface).copied().flatten() else {
                 continue;
             };
@@ -358,33 +360,36 @@ pub fn direction_sensitivity(
     if arrivals.len() < 2 || !arrivals.iter().all(plane_wave) {
         return 0.0;
     }
-    let ends = |a: &Arrival| {
+    // Each arrival's entry and exit: points, unit directions and indices (read once: the
+    // first element of a shared trail is a walk from its end).
+    let ends_of = |a: &Arrival| {
         let p = &a.path;
         let (x0, x1) = (p.points[0], *p.points.last().unwrap());
         let (d0, d1) = (p.dirs[0].normalize(), p.dirs.last().unwrap().normalize());
         let (n0, n1) = (p.indices[0], *p.indices.last().unwrap());
         (x0, x1, d0, d1, n0, n1)
     };
-    let (r_in, r_out, _, _, _, _) = ends(first);
+    let all_ends: Vec<_> = arrivals.iter().map(ends_of).collect();
+    let ends = |k: usize| all_ends[k];
+    let (r_in, r_out, _, _, _, _) = ends(0);
     // The walk's in-plane axis at exit (and at entry): the largest offset from the first
     // arrival, perpendicular to the ray.
-    let axis = |pick: &dyn Fn(&Arrival) -> (DVec3, DVec3)| {
-        arrivals
-            .iter()
-            .map(|a| {
-                let (x, d) = pick(a);
+    let axis = |pick: &dyn Fn(usize) -> (DVec3, DVec3)| {
+        (0..arrivals.len())
+            .map(|k| {
+                let (x, d) = pick(k);
                 x - x.dot(d) * d
             })
             .max_by(|a, b| a.length().total_cmp(&b.length()))
             .filter(|v| v.length() > 0.0)
             .map(|v| v.normalize())
     };
-    let e_out = axis(&|a| {
-        let (_, x1, _, d1, _, _) = ends(a);
+    let e_out = axis(&|k| {
+        let (_, x1, _, d1, _, _) = ends(k);
         (x1 - r_out, d1)
     });
-    let e_in = axis(&|a| {
-        let (x0, _, d0, _, _, _) = ends(a);
+    let e_in = axis(&|k| {
+        let (x0, _, d0, _, _, _) = ends(k);
         (x0 - r_in, d0)
     });
     // δθ_out per δθ through the first and last face (Snell: n cos θ dθ is conserved).
@@ -396,7 +401,7 @@ pub fn direction_sensitivity(
                     scene.surfaces[a.surface].plane.normal,
                     scene.surfaces[b.surface].plane.normal,
                 );
-                let (_, _, d0, d1, n0, n1) = ends(first);
+                let (_, _, d0, d1, n0, n1) = ends(0);
                 let (c0, c1) = (d0.dot(na).abs(), d1.dot(nb).abs());
                 if c1 > 0.0 { (n0 * c0) / (n1 * c1) } else { 0.0 }
             }
@@ -406,8 +411,8 @@ pub fn direction_sensitivity(
     let mut groups: BTreeMap<u64, ([Complex64; 3], [Complex64; 3])> = BTreeMap::new();
     let mut total = 0.0;
     debug_assert_eq!(arrivals.len(), vector.len());
-    for (a, c) in arrivals.iter().zip(vector) {
-        let (x0, x1, _, _, n0, n1) = ends(a);
+    for (k, c) in vector.iter().enumerate() {
+        let (x0, x1, _, _, n0, n1) = ends(k);
         let ds_in = e_in.map_or(0.0, |e| n0 * (x0 - r_in).dot(e));
         let ds_out = e_out.map_or(0.0, |e| n1 * (x1 - r_out).dot(e) * turn_out);
         let dphi = std::f64::consts::TAU * (ds_in - ds_out) * DIRECTION_ROUNDING / lambda_m;
@@ -479,14 +484,16 @@ pub fn amplitude_sensitivity(
             (m - n0).length() < 1e-12 || (m + n0).length() < 1e-12
         })
     };
-    if !arrivals.iter().all(|a| plane_wave(a) && parallel(a)) {
-        return 0.0;
-    }
+    // At normal incidence (and grazing) the term is 0 whatever the arrivals: decided before
+    // the scan of every event below.
     let c1 = d0.normalize().dot(n0).abs();
-    let dc1 = cosine_rounding(*d0, n0);
     if c1 == 0.0 || c1 >= 1.0 {
         return 0.0;
     }
+    if !arrivals.iter().all(|a| plane_wave(a) && parallel(a)) {
+        return 0.0;
+    }
+    let dc1 = cosine_rounding(*d0, n0);
     let q1 = n1 * c1;
     // Between parallel faces every event at one surface, of one kind, from one side, in one
     // index meets the same angle (Snell's invariant), so its share κ_e |dc_e| is computed once:

@@ -1020,6 +1020,8 @@ pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
         parallel_fields: true,
         ..Default::default()
     };
+    // Each arrival's field, formed once (a closed tail's is a sum), not once per pair.
+    let fields: Vec<crate::optics::ray::Field3> = arrivals.iter().map(vector_field).collect();
     for (i, a) in arrivals.iter().enumerate() {
         n.interfaces |= !a.path.sequence.is_empty();
         n.tir |= a.path.has_tir;
@@ -1027,13 +1029,13 @@ pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
         if id == INCOHERENT {
             continue;
         }
-        for b in &arrivals[..i] {
+        for (j, b) in arrivals[..i].iter().enumerate() {
             if b.vector.coherence_id != id {
                 continue;
             }
             n.interference = true;
             // Parallel, real-proportional fields: |E_a·E_b*| = |E_a||E_b|.
-            let (ea, eb) = (vector_field(a), vector_field(b));
+            let (ea, eb) = (fields[i], fields[j]);
             let dot: Complex64 = (0..3).map(|k| ea[k] * eb[k].conj()).sum();
             let norm =
                 |e: &crate::optics::ray::Field3| e.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
