@@ -142,6 +142,18 @@ impl Arrival {
         a
     }
 
+    /// The reflections of the arrival's path inside a medium other than the ambient one
+    /// (index `ambient_index`): what [`path::EnumerationLimits::max_internal_reflections`]
+    /// bounds (an event's medium is the index of the segment before it).
+    pub fn internal_reflections(&self, ambient_index: f64) -> usize {
+        self.path
+            .sequence
+            .iter()
+            .zip(self.path.indices.iter())
+            .filter(|(e, n)| e.kind == path::EventKind::Reflect && **n != ambient_index)
+            .count()
+    }
+
     /// [`Arrival::at_wavelength`] in place: the rays' vacuum wavelength set to `lambda_m`.
     pub fn set_wavelength(&mut self, lambda_m: f64) {
         self.vector.wavelength_m = lambda_m;

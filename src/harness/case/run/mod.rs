@@ -6,6 +6,7 @@ use super::load::{Case, CaseError};
 use super::reference::{self, MetricKind};
 use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
 use crate::accumulate::Accumulator;
+use crate::harness::conditioning;
 use crate::accumulate::fidelity::{self, Fidelity, SceneNeeds};
 use crate::optics::observable::{Observable, Returns, check_match};
 use crate::scene::source::Emitter;
@@ -24,6 +25,7 @@ mod metrics;
 mod wiring;
 
 pub use arrivals::trace_settings;
+pub use convergence::{convergence_traced, orders_within};
 use arrivals::*;
 use budget::*;
 pub use budget::{
@@ -241,6 +243,9 @@ struct PointOut {
     /// Kept for the detection floors (`keep`): every spectral sample's weight × observable
     /// factor and arrivals (`detection::floors_of_traced`).
     kept: Vec<(f64, Vec<Arrival>)>,
+    /// Kept for the convergence report (`keep_orders`): the internal reflections traced and
+    /// the arrivals of a monochrome point ([`convergence::Traced`]).
+    orders: Option<(usize, Vec<Arrival>)>,
 }
 
 fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
@@ -461,7 +466,7 @@ fn run_point(
     case: &Case,
     pt: &ProbePoint,
     levels: &[Fidelity],
-    keep: bool,
+    (keep, keep_orders): (bool, bool),
     traced: &mut Traced,
 ) -> Result<PointOut, CaseError> {
     let spec = &case.spec;
@@ -477,6 +482,7 @@ fn run_point(
         evanescent: false,
         internal: 0,
         kept: Vec::new(),
+        orders: None,
     };
     let mut kept = Vec::new();
     let mut center_target = None;
@@ -486,6 +492,9 @@ fn run_point(
     // The `vector` contributions of the sample, for the conditioning terms.
     let mut vector = Vec::new();
     let mut cycles = Vec::new();
+    // The conditioning terms' wavelength-free parts of the arrivals last traced.
+    type PathTerms = (Option<conditioning::RoundingTerms>, Option<Vec<f64>>);
+    let mut path_terms: Option<PathTerms> = None;
     let (built, internal) = trace_point(case, pt, traced, |built, spectrum, sample| {
         let Sample {
             index: k,
@@ -494,7 +503,7 @@ fn run_point(
             target,
             factor,
             arrivals: arr,
-            retraced: _,
+            retraced,
             optics,
         } = sample;
         // `trace::intensity` of each level, with the accumulator and contributions reused
@@ -546,28 +555,40 @@ fn run_point(
             let sources = built.scene.sources.iter().map(|s| s.intensity.sqrt()).sum();
             out.rounding += w * budget::tail_truncation(factor * i, eps, sources);
         }
+        if retraced {
+            path_terms = None;
+        }
         if let Some(r) = reference {
-            out.rounding += w
-                * factor
-                * crate::harness::conditioning::intensity_rounding(
-                    &arr,
+            // What the rounding and direction terms read from the paths alone, formed once
+            // for the arrivals of a spectrum traced once (`conditioning::RoundingTerms`,
+            // `conditioning::direction_offsets`: the same values, bit for bit).
+            let (rounding_terms, offsets) = path_terms.get_or_insert_with(|| {
+                (
+                    conditioning::RoundingTerms::of(arr, r, &built.scene),
+                    conditioning::direction_offsets(arr, &built.scene),
+                )
+            });
+            let rounding = match rounding_terms {
+                Some(t) => t.intensity_rounding(arr, &vector, lambda),
+                None => conditioning::intensity_rounding(
+                    arr,
                     r,
                     &vector,
                     lambda,
                     &built.scene,
                     &optics,
-                );
+                ),
+            };
+            out.rounding += w * factor * rounding;
+            let direction = offsets.as_ref().map_or(0.0, |o| {
+                conditioning::direction_sensitivity_of(o, &vector, lambda)
+            });
             // The representation term: the phase (direction_sensitivity) and the amplitudes
             // (amplitude_sensitivity; the transmitted power factor's own, relative) of a scene
             // whose plane-wave direction and normals are held one rounding off.
             out.representation += w
                 * factor
-                * (crate::harness::conditioning::direction_sensitivity(
-                    &arr,
-                    &vector,
-                    lambda,
-                    &built.scene,
-                ) + crate::harness::conditioning::amplitude_sensitivity(
+                * (direction + crate::harness::conditioning::amplitude_sensitivity(
                     &arr,
                     &vector,
                     &built.scene,
@@ -658,10 +679,16 @@ fn run_point(
         if keep {
             kept.push((w * factor, arr.to_vec()));
         }
+        if keep_orders && spectrum.len() == 1 {
+            out.orders = Some((0, arr.to_vec()));
+        }
         Ok(())
     })?;
     out.internal = internal;
     out.kept = kept;
+    if let Some(o) = &mut out.orders {
+        o.0 = internal;
+    }
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
     // The centre sample's target: the metrics below need a propagating wave there.
     let centre_target = || {
@@ -734,6 +761,13 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
     // The points the detection floors sample keep their arrivals: the floors are measured on
     // the very arrivals traced here, not on a second trace of them.
     let sampled = super::detection::sampled_points(points.len());
+    // The points the convergence report sums over keep their arrivals too: its rungs are
+    // the traced orders up to each budget (`convergence::convergence`).
+    let orders_sampled = if convergence_report {
+        convergence_points(case, points.len())
+    } else {
+        Vec::new()
+    };
     // Each worker keeps the arrivals it traced last: a wavelength sweep over one
     // non-dispersive scene is traced once per worker ([`Traced`]; the same arrivals, bit for
     // bit, whichever points a worker runs).
@@ -742,7 +776,8 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         .enumerate()
         .map_init(Traced::default, |traced, (i, pt)| {
             let keep = convergence_report && sampled.binary_search(&i).is_ok();
-            run_point(case, pt, &levels, keep, traced)
+            let keep_orders = orders_sampled.binary_search(&i).is_ok();
+            run_point(case, pt, &levels, (keep, keep_orders), traced)
         })
         .collect::<Vec<_>>()
         .into_iter()
@@ -841,7 +876,12 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         phase_representation: outs.iter().map(|o| o.phase_representation).collect(),
     };
     if convergence_report {
-        result.convergence = convergence(case, &points)?;
+        let mut outs = outs;
+        let kept_orders: Vec<Option<(usize, Vec<Arrival>)>> = orders_sampled
+            .iter()
+            .map(|&i| outs[i].orders.take())
+            .collect();
+        result.convergence = convergence(case, &points, kept_orders)?;
         let traced = outs
             .into_iter()
             .enumerate()
