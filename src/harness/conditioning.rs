@@ -293,7 +293,10 @@ fn path_rounding(a: &Arrival, reference: DoubleDouble) -> (f64, f64, f64, f64) {
 }
 
 /// The bound of [`intensity_rounding`] from each arrival's contribution, |ΔS| and δa.
-fn rounding_sum<'c>(terms: impl Iterator<Item = (&'c Contribution, f64, f64)>, lambda_m: f64) -> f64 {
+fn rounding_sum<'c>(
+    terms: impl Iterator<Item = (&'c Contribution, f64, f64)>,
+    lambda_m: f64,
+) -> f64 {
     let cu = ROUNDINGS * UNIT_ROUNDOFF;
     // Per coherence group: (Σ E_k e^{iφ}, Σ|E_k|, Σ|E_k|(δφ_k + δa_k), n).
     let mut groups: BTreeMap<u64, ([Complex64; 3], f64, f64, usize)> = BTreeMap::new();

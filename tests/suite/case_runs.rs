@@ -132,8 +132,7 @@ fn convergence_rungs_are_the_orders_a_smaller_budget_traces() {
                 "scene {scene_k}: n {n_film} on {n_below}, d {d:e}, θ {theta}, λ {lambda:e}, \
                  transmitted {transmitted}, m {m} of {big}"
             );
-            let Some(kept) = run::orders_within(&all, big, m, st.limits.max_events, ambient)
-            else {
+            let Some(kept) = run::orders_within(&all, big, m, st.limits.max_events, ambient) else {
                 assert!(m > big, "{what}: refused");
                 continue;
             };

@@ -6,8 +6,8 @@ use super::load::{Case, CaseError};
 use super::reference::{self, MetricKind};
 use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
 use crate::accumulate::Accumulator;
-use crate::harness::conditioning;
 use crate::accumulate::fidelity::{self, Fidelity, SceneNeeds};
+use crate::harness::conditioning;
 use crate::optics::observable::{Observable, Returns, check_match};
 use crate::scene::source::Emitter;
 use crate::trace::path::{EnumerationLimits, EventKind, PathError, SolveOptions, Target};
@@ -25,7 +25,6 @@ mod metrics;
 mod wiring;
 
 pub use arrivals::trace_settings;
-pub use convergence::{convergence_traced, orders_within};
 use arrivals::*;
 use budget::*;
 pub use budget::{
@@ -33,6 +32,7 @@ pub use budget::{
     work_estimate,
 };
 use convergence::*;
+pub use convergence::{convergence_traced, orders_within};
 use metrics::*;
 use wiring::*;
 
@@ -320,13 +320,9 @@ impl Traced {
     /// Whether arrivals traced at one wavelength are, at another with the same indices, the
     /// same arrivals with that wavelength ([`Traced`]).
     fn wavelength_free(arrivals: &[Arrival]) -> bool {
-        arrivals.iter().all(|a| {
-            !a.path.has_tir
-                && a.path
-                    .sequence
-                    .iter()
-                    .all(|e| e.kind != EventKind::Tunnel)
-        })
+        arrivals
+            .iter()
+            .all(|a| !a.path.has_tir && a.path.sequence.iter().all(|e| e.kind != EventKind::Tunnel))
     }
 }
 
@@ -570,14 +566,9 @@ fn run_point(
             });
             let rounding = match rounding_terms {
                 Some(t) => t.intensity_rounding(arr, &vector, lambda),
-                None => conditioning::intensity_rounding(
-                    arr,
-                    r,
-                    &vector,
-                    lambda,
-                    &built.scene,
-                    &optics,
-                ),
+                None => {
+                    conditioning::intensity_rounding(arr, r, &vector, lambda, &built.scene, &optics)
+                }
             };
             out.rounding += w * factor * rounding;
             let direction = offsets.as_ref().map_or(0.0, |o| {
@@ -588,13 +579,15 @@ fn run_point(
             // whose plane-wave direction and normals are held one rounding off.
             out.representation += w
                 * factor
-                * (direction + crate::harness::conditioning::amplitude_sensitivity(
-                    &arr,
-                    &vector,
-                    &built.scene,
-                    &optics,
-                ) + vector_intensity.unwrap_or(0.0)
-                    * reference::observable_factor_representation(&pt.observer, built, lambda));
+                * (direction
+                    + crate::harness::conditioning::amplitude_sensitivity(
+                        &arr,
+                        &vector,
+                        &built.scene,
+                        &optics,
+                    )
+                    + vector_intensity.unwrap_or(0.0)
+                        * reference::observable_factor_representation(&pt.observer, built, lambda));
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity
