@@ -581,7 +581,7 @@ fn run_point(
                 * factor
                 * (direction
                     + crate::harness::conditioning::amplitude_sensitivity(
-                        &arr,
+                        arr,
                         &vector,
                         &built.scene,
                         &optics,
