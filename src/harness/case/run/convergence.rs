@@ -40,7 +40,7 @@ pub(super) fn convergence_points(case: &Case, n: usize) -> Vec<usize> {
 /// The sequence tree of the smaller budget is the larger one's with every subtree of more
 /// internal reflections or events cut (both only grow along a path), and each arrival's ray is
 /// formed along its own path from its parent's: the arrivals left are the smaller trace's, bit
-/// for bit and in its order (`tests/suite/convergence_rungs.rs` holds it to the trace).
+/// for bit and in its order (`tests/suite/case_runs.rs` holds it to the trace).
 pub fn orders_within(
     arrivals: &[Arrival],
     traced_internal: usize,
@@ -182,7 +182,7 @@ pub(super) fn convergence(
     Ok(rows)
 }
 
-/// The convergence report of `case` with every rung traced ([`convergence`] without kept
+/// The convergence report of `case` with every rung traced (`convergence` without kept
 /// arrivals): what a case run's report ([`CaseResult::convergence`]) equals bit for bit.
 pub fn convergence_traced(case: &Case) -> Result<Vec<ConvergenceRow>, CaseError> {
     let points = build::probe_points(&case.spec.probe);

@@ -1,5 +1,14 @@
 //! Running a case: trace every probe point at every fidelity level, evaluate the closed forms,
 //! and compare. Probe points run in parallel (rayon); results are deterministic.
+//!
+//! Work is shared where it gives the same values bit for bit, never traced again: every rung
+//! takes its contributions from one trace of a sample; a sample's arrivals are relabelled to
+//! the next sample's wavelength where a new trace would give the same ones (`Traced`: a
+//! spectrum, or a wavelength sweep over one scene, through non-dispersive media), with the
+//! wavelength-free parts of the conditioning terms formed once per trace
+//! ([`conditioning::RoundingTerms`], [`conditioning::direction_offsets`]); the detection
+//! floors and the convergence report read the arrivals the run traced
+//! ([`orders_within`]: a rung within a point's budget is its traced orders, cut).
 
 use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
@@ -244,7 +253,7 @@ struct PointOut {
     /// factor and arrivals (`detection::floors_of_traced`).
     kept: Vec<(f64, Vec<Arrival>)>,
     /// Kept for the convergence report (`keep_orders`): the internal reflections traced and
-    /// the arrivals of a monochrome point ([`convergence::Traced`]).
+    /// the arrivals of a monochrome point (`convergence::convergence`, [`orders_within`]).
     orders: Option<(usize, Vec<Arrival>)>,
 }
 
