@@ -250,8 +250,8 @@ struct PointOut {
     evanescent: bool,
     internal: usize,
     /// Kept for the detection floors (`keep`): every spectral sample's weight × observable
-    /// factor and arrivals (`detection::floors_of_traced`).
-    kept: Vec<(f64, Vec<Arrival>)>,
+    /// factor and what a fault touches of its arrivals (`detection::floors_of_traced`).
+    kept: super::detection::PointArrivals,
     /// Kept for the convergence report (`keep_orders`): the internal reflections traced and
     /// the arrivals of a monochrome point (`convergence::convergence`, [`orders_within`]).
     orders: Option<(usize, Vec<Arrival>)>,
@@ -679,7 +679,7 @@ fn run_point(
             center = lambda;
         }
         if keep {
-            kept.push((w * factor, arr.to_vec()));
+            kept.push((w * factor, super::detection::fault_rays(arr)));
         }
         if keep_orders && spectrum.len() == 1 {
             out.orders = Some((0, arr.to_vec()));
