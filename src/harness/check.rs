@@ -415,87 +415,105 @@ pub(crate) fn evaluate<T: Send>(
     );
     let results: Vec<CaseResult> = results.into_iter().collect::<Result<_, _>>()?;
 
-    let mut rows = Vec::new();
-    let mut goldens = Vec::new();
-    for (k, (case, r)) in cases.iter().zip(&results).enumerate() {
-        let mut case_rows = verdict::rows(r);
-        // A NaN deviation compares false with every tolerance and would read as a pass: any
-        // non-finite traced or closed-form value fails the case.
-        let non_finite: Vec<String> = r
-            .metrics
-            .iter()
-            .flat_map(|m| {
-                let analytic = (!m.analytic.iter().all(|x| x.is_finite()))
-                    .then(|| format!("{} analytic", m.name));
-                let traced = m
-                    .traced
-                    .iter()
-                    .filter(|(_, t)| !t.iter().all(|x| x.is_finite()))
-                    .map(|(l, _)| format!("{} traced {l}", m.name));
-                analytic.into_iter().chain(traced)
-            })
-            .collect();
-        if !non_finite.is_empty() {
-            case_rows.push(Row {
+    // Each case's rows and golden comparison, side by side (each reads only its own golden
+    // file); collected in case order, so the first corrupt golden file in file order is the
+    // error reported, as a loop over the cases would report it.
+    type CaseVerdict = (Vec<Row>, Option<(PathBuf, String, String)>);
+    let verdicts: Vec<Result<CaseVerdict, InputError>> = cases
+        .par_iter()
+        .zip(&results)
+        .enumerate()
+        .map(|(k, (case, r))| -> Result<CaseVerdict, InputError> {
+            let mut case_rows = verdict::rows(r);
+            // A NaN deviation compares false with every tolerance and would read as a pass: any
+            // non-finite traced or closed-form value fails the case.
+            let non_finite: Vec<String> = r
+                .metrics
+                .iter()
+                .flat_map(|m| {
+                    let analytic = (!m.analytic.iter().all(|x| x.is_finite()))
+                        .then(|| format!("{} analytic", m.name));
+                    let traced = m
+                        .traced
+                        .iter()
+                        .filter(|(_, t)| !t.iter().all(|x| x.is_finite()))
+                        .map(|(l, _)| format!("{} traced {l}", m.name));
+                    analytic.into_iter().chain(traced)
+                })
+                .collect();
+            if !non_finite.is_empty() {
+                case_rows.push(Row {
+                    case: r.name.clone(),
+                    fidelity: "all".into(),
+                    metric: "finite".into(),
+                    max_abs_dev: f64::NAN,
+                    rms_dev: f64::NAN,
+                    tolerance: None,
+                    pass: Some(false),
+                    seconds: 0.0,
+                    note: format!("non-finite values in {}", non_finite.join(", ")),
+                });
+            }
+            let golden_path = golden_dirs[k].join(format!("{}.csv", r.name));
+            // The case's golden tolerance, or its values' conditioning when larger (golden files
+            // are reproducible across CPUs to their conditioning, not bit for bit).
+            let golden_tolerance = verdict::golden_tolerance(case, r);
+            let golden_row = |pass: bool, dev: f64, note: String| Row {
                 case: r.name.clone(),
                 fidelity: "all".into(),
-                metric: "finite".into(),
-                max_abs_dev: f64::NAN,
-                rms_dev: f64::NAN,
-                tolerance: None,
-                pass: Some(false),
+                metric: "golden".into(),
+                max_abs_dev: dev,
+                rms_dev: dev,
+                tolerance: Some(golden_tolerance),
+                pass: Some(pass),
                 seconds: 0.0,
-                note: format!("non-finite values in {}", non_finite.join(", ")),
-            });
-        }
-        let golden_path = golden_dirs[k].join(format!("{}.csv", r.name));
-        let text = verdict::golden_csv(r);
-        // The case's golden tolerance, or its values' conditioning when larger (golden files
-        // are reproducible across CPUs to their conditioning, not bit for bit).
-        let golden_tolerance = verdict::golden_tolerance(case, r);
-        let golden_row = |pass: bool, dev: f64, note: String| Row {
-            case: r.name.clone(),
-            fidelity: "all".into(),
-            metric: "golden".into(),
-            max_abs_dev: dev,
-            rms_dev: dev,
-            tolerance: Some(golden_tolerance),
-            pass: Some(pass),
-            seconds: 0.0,
-            note,
-        };
-        if opts.bless {
-            goldens.push((golden_dirs[k].clone(), format!("{}.csv", r.name), text));
-        } else {
-            match std::fs::read_to_string(&golden_path) {
-                Err(_) => case_rows.push(golden_row(
-                    false,
-                    1.0,
-                    format!(
-                        "no golden file {}: run `{}` to create it",
-                        golden_path.display(),
-                        bless_command(opts, &files[k], &r.name)
-                    ),
-                )),
-                Ok(g) => match verdict::compare_golden(r, &g, golden_tolerance) {
-                    Ok(dev) => {
-                        case_rows.push(golden_row(true, dev, golden_path.display().to_string()))
-                    }
-                    Err(GoldenError::Corrupt(m)) => {
-                        return Err(InputError(format!(
-                            "{}: corrupt golden file: {m}",
-                            golden_path.display()
-                        )));
-                    }
-                    Err(GoldenError::Mismatch(m)) => case_rows.push(golden_row(
+                note,
+            };
+            let mut golden = None;
+            if opts.bless {
+                golden = Some((
+                    golden_dirs[k].clone(),
+                    format!("{}.csv", r.name),
+                    verdict::golden_csv(r),
+                ));
+            } else {
+                match std::fs::read_to_string(&golden_path) {
+                    Err(_) => case_rows.push(golden_row(
                         false,
                         1.0,
-                        format!("{}: {m}", golden_path.display()),
+                        format!(
+                            "no golden file {}: run `{}` to create it",
+                            golden_path.display(),
+                            bless_command(opts, &files[k], &r.name)
+                        ),
                     )),
-                },
+                    Ok(g) => match verdict::compare_golden(r, &g, golden_tolerance) {
+                        Ok(dev) => {
+                            case_rows.push(golden_row(true, dev, golden_path.display().to_string()))
+                        }
+                        Err(GoldenError::Corrupt(m)) => {
+                            return Err(InputError(format!(
+                                "{}: corrupt golden file: {m}",
+                                golden_path.display()
+                            )));
+                        }
+                        Err(GoldenError::Mismatch(m)) => case_rows.push(golden_row(
+                            false,
+                            1.0,
+                            format!("{}: {m}", golden_path.display()),
+                        )),
+                    },
+                }
             }
-        }
+            Ok((case_rows, golden))
+        })
+        .collect();
+    let mut rows = Vec::new();
+    let mut goldens = Vec::new();
+    for v in verdicts {
+        let (case_rows, golden) = v?;
         rows.extend(case_rows);
+        goldens.extend(golden);
     }
 
     // The stability sweep: judged like a case.

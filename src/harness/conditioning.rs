@@ -231,32 +231,9 @@ pub fn intensity_rounding(
     optics: &SceneOptics,
 ) -> f64 {
     let cu = ROUNDINGS * UNIT_ROUNDOFF;
-    // Per coherence group: (Σ E_k e^{iφ}, Σ|E_k|, Σ|E_k|(δφ_k + δa_k), n).
-    let mut groups: BTreeMap<u64, ([Complex64; 3], f64, f64, usize)> = BTreeMap::new();
-    let mut singles = Vec::new();
     debug_assert_eq!(arrivals.len(), vector.len());
-    for (a, c) in arrivals.iter().zip(vector) {
-        let e = c.field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
-        let ds = (a.vector.optical_path - reference).to_f64().abs();
-        let dphi = std::f64::consts::TAU * cu * (ds / lambda_m + 1.0);
-        let mut da = cu * (a.path.sequence.len() as f64 + 1.0);
-        let x = a
-            .path
-            .points
-            .iter()
-            .fold(0.0f64, |m, p| m.max(p.abs().max_element()));
-        let ell: f64 = a
-            .path
-            .points
-            .iter()
-            .zip(a.path.points.iter().skip(1))
-            .map(|(p, q)| (*q - *p).length())
-            .sum::<f64>()
-            .max(f64::MIN_POSITIVE);
-        if a.path.spreading != 1.0 {
-            let end = a.vector.origin.abs().max_element();
-            da += UNIT_ROUNDOFF * x.max(end) / (SPREADING_STEP * ell);
-        }
+    let terms = arrivals.iter().zip(vector).map(|(a, c)| {
+        let (ds, mut da, x, ell) = path_rounding(a, reference);
         // A closed Airy tail (docs/PHYSICS.md §5a): the sum q/(1 − q) of the further orders is
         // 1/|1 − q| more sensitive to the round trip's phase and amplitude than one order.
         if let Some(t) = &a.tail {
@@ -267,13 +244,14 @@ pub fn intensity_rounding(
         // directions follow from its own direction and Snell's law, whatever the points.
         let plane_wave = from_plane_wave(scene, a);
         let tilt = if plane_wave { 0.0 } else { cu * x / ell };
-        let events = a
-            .path
-            .sequence
-            .iter()
-            .zip(a.path.dirs.iter())
-            .zip(a.path.indices.iter());
-        for ((ev, d_in), &n_in) in events.filter(|_| tilt > 0.0) {
+        let events = (tilt > 0.0).then(|| {
+            a.path
+                .sequence
+                .iter()
+                .zip(a.path.dirs.iter())
+                .zip(a.path.indices.iter())
+        });
+        for ((ev, d_in), &n_in) in events.into_iter().flatten() {
             let Some(so) = optics.surfaces.get(ev.surface).copied().flatten() else {
                 continue;
             };
@@ -281,6 +259,51 @@ pub fn intensity_rounding(
             let layer = optics.layers[ev.surface][usize::from(d_in.dot(normal) >= 0.0)];
             da += tilt_change(so, ev.kind, normal, *d_in, n_in, layer, tilt);
         }
+        (c, ds, da)
+    });
+    rounding_sum(terms, lambda_m)
+}
+
+/// The wavelength-free part of an arrival's rounding terms ([`intensity_rounding`]): |ΔS|,
+/// its optical path from `reference` (m); δa before a closed tail's and the tilts' shares; X,
+/// the largest coordinate of its event points; ℓ, its length.
+fn path_rounding(a: &Arrival, reference: DoubleDouble) -> (f64, f64, f64, f64) {
+    let cu = ROUNDINGS * UNIT_ROUNDOFF;
+    let ds = (a.vector.optical_path - reference).to_f64().abs();
+    let mut da = cu * (a.path.sequence.len() as f64 + 1.0);
+    // X and ℓ in one walk over the points (a shared trail is walked from its end,
+    // [`crate::optics::trail::Trail::iter`]).
+    let mut x = 0.0f64;
+    let mut previous: Option<DVec3> = None;
+    let ell: f64 = a
+        .path
+        .points
+        .iter()
+        .filter_map(|q| {
+            x = x.max(q.abs().max_element());
+            previous.replace(*q).map(|p| (*q - p).length())
+        })
+        .sum::<f64>()
+        .max(f64::MIN_POSITIVE);
+    if a.path.spreading != 1.0 {
+        let end = a.vector.origin.abs().max_element();
+        da += UNIT_ROUNDOFF * x.max(end) / (SPREADING_STEP * ell);
+    }
+    (ds, da, x, ell)
+}
+
+/// The bound of [`intensity_rounding`] from each arrival's contribution, |ΔS| and δa.
+fn rounding_sum<'c>(
+    terms: impl Iterator<Item = (&'c Contribution, f64, f64)>,
+    lambda_m: f64,
+) -> f64 {
+    let cu = ROUNDINGS * UNIT_ROUNDOFF;
+    // Per coherence group: (Σ E_k e^{iφ}, Σ|E_k|, Σ|E_k|(δφ_k + δa_k), n).
+    let mut groups: BTreeMap<u64, ([Complex64; 3], f64, f64, usize)> = BTreeMap::new();
+    let mut singles = Vec::new();
+    for (c, ds, da) in terms {
+        let e = c.field.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();
+        let dphi = std::f64::consts::TAU * cu * (ds / lambda_m + 1.0);
         let term = e * (dphi + da);
         if c.coherence_id == INCOHERENT {
             singles.push((e, term));
@@ -311,6 +334,55 @@ pub fn intensity_rounding(
         intensity += e * e;
     }
     total + UNIT_ROUNDOFF * intensity
+}
+
+/// The wavelength-free part of [`intensity_rounding`] for arrivals that all come from plane
+/// waves (no tilt terms, which read the optics): per arrival |ΔS| and δa before a closed tail's
+/// share. `None` where an arrival comes from another source. Valid for the same arrivals at
+/// any wavelength ([`crate::trace::Arrival::set_wavelength`]).
+#[derive(Clone, Debug, PartialEq)]
+pub struct RoundingTerms {
+    paths: Vec<(f64, f64)>,
+}
+
+impl RoundingTerms {
+    /// The terms of `arrivals`, phases referred to `reference`, in `scene`.
+    pub fn of(arrivals: &[Arrival], reference: DoubleDouble, scene: &Scene) -> Option<Self> {
+        arrivals
+            .iter()
+            .all(|a| from_plane_wave(scene, a))
+            .then(|| RoundingTerms {
+                paths: arrivals
+                    .iter()
+                    .map(|a| {
+                        let (ds, da, _, _) = path_rounding(a, reference);
+                        (ds, da)
+                    })
+                    .collect(),
+            })
+    }
+
+    /// [`intensity_rounding`] of the arrivals these terms were formed of, at `lambda_m`: the
+    /// same value, bit for bit, with the paths read once.
+    pub fn intensity_rounding(
+        &self,
+        arrivals: &[Arrival],
+        vector: &[Contribution],
+        lambda_m: f64,
+    ) -> f64 {
+        debug_assert_eq!(arrivals.len(), self.paths.len());
+        let terms = arrivals
+            .iter()
+            .zip(vector)
+            .zip(&self.paths)
+            .map(|((a, c), &(ds, mut da))| {
+                if let Some(t) = &a.tail {
+                    da += t.field(&a.vector.field(), Fidelity::Vector, lambda_m).1;
+                }
+                (c, ds, da)
+            });
+        rounding_sum(terms, lambda_m)
+    }
 }
 
 /// The derived tolerance of an intensity profile: the largest per-point bound relative to the
@@ -351,40 +423,52 @@ pub fn direction_sensitivity(
     lambda_m: f64,
     scene: &Scene,
 ) -> f64 {
-    let Some(first) = arrivals.first() else {
-        return 0.0;
-    };
+    match direction_offsets(arrivals, scene) {
+        Some(offsets) => direction_sensitivity_of(&offsets, vector, lambda_m),
+        None => 0.0,
+    }
+}
+
+/// The wavelength-free part of [`direction_sensitivity`]: per arrival, n_in (Δx_in·e_in) −
+/// n_out (Δx_out·e_out) δθ_out/δθ (m per rad); `None` where the sensitivity is 0 whatever the
+/// wavelength (fewer than two arrivals, a source other than a plane wave). Valid for the same
+/// arrivals at any wavelength ([`crate::trace::Arrival::set_wavelength`]).
+pub fn direction_offsets(arrivals: &[Arrival], scene: &Scene) -> Option<Vec<f64>> {
+    let first = arrivals.first()?;
     let plane_wave = |a: &Arrival| from_plane_wave(scene, a);
     if arrivals.len() < 2 || !arrivals.iter().all(plane_wave) {
-        return 0.0;
+        return None;
     }
-    let ends = |a: &Arrival| {
+    // Each arrival's entry and exit: points, unit directions and indices (read once: the
+    // first element of a shared trail is a walk from its end).
+    let ends_of = |a: &Arrival| {
         let p = &a.path;
         let (x0, x1) = (p.points[0], *p.points.last().unwrap());
         let (d0, d1) = (p.dirs[0].normalize(), p.dirs.last().unwrap().normalize());
         let (n0, n1) = (p.indices[0], *p.indices.last().unwrap());
         (x0, x1, d0, d1, n0, n1)
     };
-    let (r_in, r_out, _, _, _, _) = ends(first);
+    let all_ends: Vec<_> = arrivals.iter().map(ends_of).collect();
+    let ends = |k: usize| all_ends[k];
+    let (r_in, r_out, _, _, _, _) = ends(0);
     // The walk's in-plane axis at exit (and at entry): the largest offset from the first
     // arrival, perpendicular to the ray.
-    let axis = |pick: &dyn Fn(&Arrival) -> (DVec3, DVec3)| {
-        arrivals
-            .iter()
-            .map(|a| {
-                let (x, d) = pick(a);
+    let axis = |pick: &dyn Fn(usize) -> (DVec3, DVec3)| {
+        (0..arrivals.len())
+            .map(|k| {
+                let (x, d) = pick(k);
                 x - x.dot(d) * d
             })
             .max_by(|a, b| a.length().total_cmp(&b.length()))
             .filter(|v| v.length() > 0.0)
             .map(|v| v.normalize())
     };
-    let e_out = axis(&|a| {
-        let (_, x1, _, d1, _, _) = ends(a);
+    let e_out = axis(&|k| {
+        let (_, x1, _, d1, _, _) = ends(k);
         (x1 - r_out, d1)
     });
-    let e_in = axis(&|a| {
-        let (x0, _, d0, _, _, _) = ends(a);
+    let e_in = axis(&|k| {
+        let (x0, _, d0, _, _, _) = ends(k);
         (x0 - r_in, d0)
     });
     // δθ_out per δθ through the first and last face (Snell: n cos θ dθ is conserved).
@@ -396,25 +480,37 @@ pub fn direction_sensitivity(
                     scene.surfaces[a.surface].plane.normal,
                     scene.surfaces[b.surface].plane.normal,
                 );
-                let (_, _, d0, d1, n0, n1) = ends(first);
+                let (_, _, d0, d1, n0, n1) = ends(0);
                 let (c0, c1) = (d0.dot(na).abs(), d1.dot(nb).abs());
                 if c1 > 0.0 { (n0 * c0) / (n1 * c1) } else { 0.0 }
             }
             _ => 1.0,
         }
     };
+    Some(
+        all_ends
+            .iter()
+            .map(|&(x0, x1, _, _, n0, n1)| {
+                let ds_in = e_in.map_or(0.0, |e| n0 * (x0 - r_in).dot(e));
+                let ds_out = e_out.map_or(0.0, |e| n1 * (x1 - r_out).dot(e) * turn_out);
+                ds_in - ds_out
+            })
+            .collect(),
+    )
+}
+
+/// [`direction_sensitivity`] from its [`direction_offsets`] and the arrivals' `vector`
+/// contributions at `lambda_m`: the same value, bit for bit.
+pub fn direction_sensitivity_of(offsets: &[f64], vector: &[Contribution], lambda_m: f64) -> f64 {
     let mut groups: BTreeMap<u64, ([Complex64; 3], [Complex64; 3])> = BTreeMap::new();
     let mut total = 0.0;
-    debug_assert_eq!(arrivals.len(), vector.len());
-    for (a, c) in arrivals.iter().zip(vector) {
-        let (x0, x1, _, _, n0, n1) = ends(a);
-        let ds_in = e_in.map_or(0.0, |e| n0 * (x0 - r_in).dot(e));
-        let ds_out = e_out.map_or(0.0, |e| n1 * (x1 - r_out).dot(e) * turn_out);
-        let dphi = std::f64::consts::TAU * (ds_in - ds_out) * DIRECTION_ROUNDING / lambda_m;
-        let ph = phasor_from_cycles(c.phase_cycles);
+    debug_assert_eq!(offsets.len(), vector.len());
+    for (&offset, c) in offsets.iter().zip(vector) {
         if c.coherence_id == INCOHERENT {
             continue;
         }
+        let dphi = std::f64::consts::TAU * offset * DIRECTION_ROUNDING / lambda_m;
+        let ph = phasor_from_cycles(c.phase_cycles);
         let g = groups
             .entry(c.coherence_id)
             .or_insert(([Complex64::default(); 3], [Complex64::default(); 3]));
@@ -479,14 +575,16 @@ pub fn amplitude_sensitivity(
             (m - n0).length() < 1e-12 || (m + n0).length() < 1e-12
         })
     };
-    if !arrivals.iter().all(|a| plane_wave(a) && parallel(a)) {
-        return 0.0;
-    }
+    // At normal incidence (and grazing) the term is 0 whatever the arrivals: decided before
+    // the scan of every event below.
     let c1 = d0.normalize().dot(n0).abs();
-    let dc1 = cosine_rounding(*d0, n0);
     if c1 == 0.0 || c1 >= 1.0 {
         return 0.0;
     }
+    if !arrivals.iter().all(|a| plane_wave(a) && parallel(a)) {
+        return 0.0;
+    }
+    let dc1 = cosine_rounding(*d0, n0);
     let q1 = n1 * c1;
     // Between parallel faces every event at one surface, of one kind, from one side, in one
     // index meets the same angle (Snell's invariant), so its share κ_e |dc_e| is computed once:

@@ -138,11 +138,28 @@ impl Arrival {
     /// new trace at `lambda_m` gives, so a spectrum is traced once.
     pub fn at_wavelength(&self, lambda_m: f64) -> Arrival {
         let mut a = self.clone();
-        a.vector.wavelength_m = lambda_m;
-        if let Some(p) = &mut a.paper {
+        a.set_wavelength(lambda_m);
+        a
+    }
+
+    /// The reflections of the arrival's path inside a medium other than the ambient one
+    /// (index `ambient_index`): what [`path::EnumerationLimits::max_internal_reflections`]
+    /// bounds (an event's medium is the index of the segment before it).
+    pub fn internal_reflections(&self, ambient_index: f64) -> usize {
+        self.path
+            .sequence
+            .iter()
+            .zip(self.path.indices.iter())
+            .filter(|(e, n)| e.kind == path::EventKind::Reflect && **n != ambient_index)
+            .count()
+    }
+
+    /// [`Arrival::at_wavelength`] in place: the rays' vacuum wavelength set to `lambda_m`.
+    pub fn set_wavelength(&mut self, lambda_m: f64) {
+        self.vector.wavelength_m = lambda_m;
+        if let Some(p) = &mut self.paper {
             p.wavelength_m = lambda_m;
         }
-        a
     }
 }
 
@@ -1015,6 +1032,8 @@ pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
         parallel_fields: true,
         ..Default::default()
     };
+    // Each arrival's field, formed once (a closed tail's is a sum), not once per pair.
+    let fields: Vec<crate::optics::ray::Field3> = arrivals.iter().map(vector_field).collect();
     for (i, a) in arrivals.iter().enumerate() {
         n.interfaces |= !a.path.sequence.is_empty();
         n.tir |= a.path.has_tir;
@@ -1022,13 +1041,13 @@ pub fn needs(arrivals: &[Arrival]) -> SceneNeeds {
         if id == INCOHERENT {
             continue;
         }
-        for b in &arrivals[..i] {
+        for (j, b) in arrivals[..i].iter().enumerate() {
             if b.vector.coherence_id != id {
                 continue;
             }
             n.interference = true;
             // Parallel, real-proportional fields: |E_a·E_b*| = |E_a||E_b|.
-            let (ea, eb) = (vector_field(a), vector_field(b));
+            let (ea, eb) = (fields[i], fields[j]);
             let dot: Complex64 = (0..3).map(|k| ea[k] * eb[k].conj()).sum();
             let norm =
                 |e: &crate::optics::ray::Field3| e.iter().map(|x| x.norm_sqr()).sum::<f64>().sqrt();

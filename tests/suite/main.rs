@@ -12,6 +12,7 @@ mod beats;
 mod beyond_critical;
 mod case_library;
 mod case_parser_props;
+mod case_runs;
 mod cli;
 mod closed_form_precision;
 mod colour;

@@ -13,7 +13,7 @@
 use super::build;
 use super::load::{Case, CaseError};
 use super::reference::MetricKind;
-use super::run::{CaseResult, trace_point};
+use super::run::{CaseResult, Traced, trace_point};
 use crate::accumulate::fidelity::Fidelity;
 use crate::accumulate::{Accumulator, Contribution};
 use crate::optics::double_double::DoubleDouble;
@@ -62,8 +62,8 @@ pub(crate) enum Fault {
 }
 
 /// The arrivals of one probe point at every spectral sample: (weight × observable factor,
-/// arrivals).
-pub(crate) type PointArrivals = Vec<(f64, Vec<Arrival>)>;
+/// what a fault touches of the arrivals, [`fault_rays`]).
+pub(crate) type PointArrivals = Vec<(f64, Vec<FaultRay>)>;
 
 /// The probe points (indices, ascending) the floors are measured on: at most [`MAX_POINTS`],
 /// spread evenly over `n` points.
@@ -85,8 +85,8 @@ pub fn detection_floors(
         .par_iter()
         .map(|&i| {
             let mut per_lambda = Vec::new();
-            trace_point(case, &points[i], |_, _, sample| {
-                per_lambda.push((sample.weight * sample.factor, sample.arrivals));
+            trace_point(case, &points[i], &mut Traced::default(), |_, _, sample| {
+                per_lambda.push((sample.weight * sample.factor, fault_rays(sample.arrivals)));
                 Ok(())
             })?;
             Ok(per_lambda)
@@ -97,7 +97,7 @@ pub fn detection_floors(
 
 /// [`detection_floors`] on arrivals already traced: `traced` holds, for the points
 /// [`sampled_points`] names and in that order, every spectral sample's weight × observable
-/// factor and arrivals, as `run::trace_point` gives them.
+/// factor and [`fault_rays`] of its arrivals, as `run::trace_point` gives them.
 pub(crate) fn floors_of_traced(
     result: &CaseResult,
     traced: Vec<PointArrivals>,
@@ -117,19 +117,10 @@ pub(crate) fn floors_of_traced(
         sampled.len(),
         "one traced point per sampled point"
     );
-    let coherent = traced.iter().flatten().any(|(_, arr)| interfere(arr));
-    // What a fault touches, taken from the arrivals once (the bisection evaluates the
-    // deviation ~80 times).
-    let faultable: Vec<Vec<(f64, Vec<FaultRay>)>> = traced
-        .iter()
-        .map(|per_lambda| {
-            per_lambda
-                .iter()
-                .map(|(w, arr)| (*w, fault_rays(arr)))
-                .collect()
-        })
-        .collect();
-    drop(traced);
+    let coherent = traced.iter().flatten().any(|(_, rays)| interfere(rays));
+    // What a fault touches, taken from the arrivals once, as they were traced (the bisection
+    // evaluates the deviation ~80 times).
+    let faultable = traced;
     let analytic: Vec<f64> = sampled.iter().map(|&i| primary.analytic[i]).collect();
     // Whether `fault` fails the gate at sampled point `k`: it deviates by more than the
     // tolerance (a NaN deviation does not).
@@ -221,7 +212,7 @@ fn chosen_path(arrivals: &[Arrival]) -> Option<*const crate::trace::path::Solved
 }
 
 /// What the `vector` contribution of one arrival is made of, and whether the fault hits it.
-struct FaultRay {
+pub(crate) struct FaultRay {
     coherence_id: u64,
     optical_path: DoubleDouble,
     wavelength_m: f64,
@@ -237,7 +228,7 @@ struct FaultRay {
 }
 
 /// The arrivals of one spectral sample as [`faulted_intensity`] needs them.
-fn fault_rays(arrivals: &[Arrival]) -> Vec<FaultRay> {
+pub(crate) fn fault_rays(arrivals: &[Arrival]) -> Vec<FaultRay> {
     let chosen = chosen_path(arrivals);
     let reference = arrivals
         .first()
@@ -319,11 +310,11 @@ fn faulted_intensity(
 
 /// Whether two arrivals of one point are mutually coherent (share a non-zero coherence id):
 /// only then can a phase error show.
-fn interfere(arrivals: &[Arrival]) -> bool {
-    arrivals.iter().enumerate().any(|(i, a)| {
-        a.vector.coherence_id != crate::optics::ray::INCOHERENT
-            && arrivals[i + 1..]
+fn interfere(rays: &[FaultRay]) -> bool {
+    rays.iter().enumerate().any(|(i, a)| {
+        a.coherence_id != crate::optics::ray::INCOHERENT
+            && rays[i + 1..]
                 .iter()
-                .any(|b| b.vector.coherence_id == a.vector.coherence_id)
+                .any(|b| b.coherence_id == a.coherence_id)
     })
 }

@@ -73,6 +73,24 @@ pub(crate) fn encode_png_with(
             pixels.len()
         ));
     }
+    let flat: Vec<u8> = pixels.iter().flatten().copied().collect();
+    encode_rgb_bytes(width, height, &flat, compression)
+}
+
+/// [`encode_png_with`] of pixels already laid out as R, G, B bytes, row-major (a bitmap
+/// backend's buffer), without a copy of them.
+pub(crate) fn encode_rgb_bytes(
+    width: usize,
+    height: usize,
+    rgb: &[u8],
+    compression: Option<png::Compression>,
+) -> Result<Vec<u8>, String> {
+    if rgb.len() != 3 * width * height || width == 0 || height == 0 {
+        return Err(format!(
+            "encode_png: {} bytes for a {width}x{height} RGB picture",
+            rgb.len()
+        ));
+    }
     let mut out = Vec::new();
     {
         let mut enc = png::Encoder::new(&mut out, width as u32, height as u32);
@@ -83,8 +101,7 @@ pub(crate) fn encode_png_with(
             enc.set_compression(c);
         }
         let mut w = enc.write_header().map_err(|e| e.to_string())?;
-        let flat: Vec<u8> = pixels.iter().flatten().copied().collect();
-        w.write_image_data(&flat).map_err(|e| e.to_string())?;
+        w.write_image_data(rgb).map_err(|e| e.to_string())?;
         w.finish().map_err(|e| e.to_string())?;
     }
     Ok(out)

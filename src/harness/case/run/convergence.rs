@@ -3,15 +3,14 @@
 
 use super::*;
 
-/// For cases with an Airy reference: the traced error against the number of reflected orders,
-/// with the geometric-tail bound.
-pub(super) fn convergence(
-    case: &Case,
-    points: &[ProbePoint],
-) -> Result<Vec<ConvergenceRow>, CaseError> {
+/// The Airy reference the report compares with (its index and film), for a monochrome case
+/// that has one.
+fn airy_reference(case: &Case) -> Option<(usize, String)> {
     let spec = &case.spec;
-    let Some((ri, film)) = spec
-        .references
+    if !matches!(spec.light, Light::Monochrome { .. }) {
+        return None;
+    }
+    spec.references
         .iter()
         .enumerate()
         .find_map(|(i, r)| match &r.model {
@@ -21,25 +20,84 @@ pub(super) fn convergence(
             } => Some((i, film.clone())),
             _ => None,
         })
-    else {
+}
+
+/// The probe points (indices, ascending) the report sums over: at most 24, evenly spread;
+/// none where the case has no report.
+pub(super) fn convergence_points(case: &Case, n: usize) -> Vec<usize> {
+    if airy_reference(case).is_none() {
+        return Vec::new();
+    }
+    let stride = n.div_ceil(24).max(1);
+    (0..n).step_by(stride).collect()
+}
+
+/// The arrivals of `arrivals` (traced with `traced_internal` internal reflections) that a
+/// trace with `internal` internal reflections and at most `max_events` events per path gives,
+/// in its order; `None` where that trace is not a part of this one (more internal reflections
+/// than traced, or a closed tail whose arrival stands for orders beyond).
+///
+/// The sequence tree of the smaller budget is the larger one's with every subtree of more
+/// internal reflections or events cut (both only grow along a path), and each arrival's ray is
+/// formed along its own path from its parent's: the arrivals left are the smaller trace's, bit
+/// for bit and in its order (`tests/suite/case_runs.rs` holds it to the trace).
+pub fn orders_within(
+    arrivals: &[Arrival],
+    traced_internal: usize,
+    internal: usize,
+    max_events: usize,
+    ambient_index: f64,
+) -> Option<Vec<Arrival>> {
+    if internal > traced_internal || arrivals.iter().any(|a| a.tail.is_some()) {
+        return None;
+    }
+    Some(
+        arrivals
+            .iter()
+            .filter(|a| {
+                a.internal_reflections(ambient_index) <= internal
+                    && a.path.sequence.len() <= max_events
+            })
+            .cloned()
+            .collect(),
+    )
+}
+
+/// For cases with an Airy reference: the traced error against the number of reflected orders,
+/// with the geometric-tail bound. `kept` holds, for the points [`convergence_points`] names,
+/// the internal reflections and arrivals of the case run where it kept them: a rung within
+/// them is summed from them ([`orders_within`]), any other is traced.
+pub(super) fn convergence(
+    case: &Case,
+    points: &[ProbePoint],
+    kept: Vec<Option<(usize, Vec<Arrival>)>>,
+) -> Result<Vec<ConvergenceRow>, CaseError> {
+    let spec = &case.spec;
+    let Some((ri, film)) = airy_reference(case) else {
         return Ok(Vec::new());
     };
-    if !matches!(spec.light, Light::Monochrome { .. }) {
-        return Ok(Vec::new());
-    }
-    // At most 24 probe points, evenly spread, keep the report cheap.
-    let stride = points.len().div_ceil(24).max(1);
-    let points: Vec<ProbePoint> = points.iter().step_by(stride).cloned().collect();
+    let indices = convergence_points(case, points.len());
+    let points: Vec<ProbePoint> = indices.iter().map(|&i| points[i].clone()).collect();
     let points = &points[..];
+    let kept: Vec<Option<(usize, Vec<Arrival>)>> = if kept.len() == points.len() {
+        kept
+    } else {
+        vec![None; points.len()]
+    };
     let mut rows = Vec::new();
-    // Never more internal reflections than the case's own budget (the preflight counted it).
+    // Never more internal reflections than the case's own budget (the preflight counted it):
+    // a kept point's budget is the one its run traced.
     let budget = points
         .iter()
-        .map(|pt| {
-            let built = build::build_scene(&spec.scene, &pt.overrides)
-                .map_err(|e| case_err(case, "$.scene", e))?;
-            let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
-            internal_reflections(case, &built, lambda)
+        .zip(&kept)
+        .map(|(pt, k)| match k {
+            Some((internal, _)) => Ok(*internal),
+            None => {
+                let built = build::build_scene(&spec.scene, &pt.overrides)
+                    .map_err(|e| case_err(case, "$.scene", e))?;
+                let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
+                internal_reflections(case, &built, lambda)
+            }
         })
         .collect::<Result<Vec<_>, _>>()?
         .into_iter()
@@ -52,7 +110,8 @@ pub(super) fn convergence(
         }
         let res: Vec<(f64, f64)> = points
             .par_iter()
-            .map(|pt| -> Result<(f64, f64), CaseError> {
+            .zip(&kept)
+            .map(|(pt, k)| -> Result<(f64, f64), CaseError> {
                 let built = build::build_scene(&spec.scene, &pt.overrides)
                     .map_err(|e| case_err(case, "$.scene", e))?;
                 let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
@@ -68,19 +127,28 @@ pub(super) fn convergence(
                 let st = settings(case, &built, internal);
                 let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
                     .map_err(|e| case_err(case, "$.probe", e))?;
-                let traced = factor
-                    * trace::intensity(
-                        &arrivals_at(
-                            &built,
-                            &optics,
-                            &target,
-                            &pt.observer,
-                            &st,
-                            &required_paths(case, &built),
-                        )
-                        .map_err(|e| case_err(case, "$.probe", e))?,
-                        Fidelity::Vector,
-                    );
+                let within = k.as_ref().and_then(|(traced, arr)| {
+                    orders_within(
+                        arr,
+                        *traced,
+                        internal,
+                        st.limits.max_events,
+                        optics.ambient_index,
+                    )
+                });
+                let arrivals = match within {
+                    Some(arr) => arr,
+                    None => arrivals_at(
+                        &built,
+                        &optics,
+                        &target,
+                        &pt.observer,
+                        &st,
+                        &required_paths(case, &built),
+                    )
+                    .map_err(|e| case_err(case, "$.probe", e))?,
+                };
+                let traced = factor * trace::intensity(&arrivals, Fidelity::Vector);
                 let exact =
                     reference::value(&spec.references[ri].model, &built, &target, lambda, false)
                         .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
@@ -112,4 +180,11 @@ pub(super) fn convergence(
         }
     }
     Ok(rows)
+}
+
+/// The convergence report of `case` with every rung traced (`convergence` without kept
+/// arrivals): what a case run's report ([`CaseResult::convergence`]) equals bit for bit.
+pub fn convergence_traced(case: &Case) -> Result<Vec<ConvergenceRow>, CaseError> {
+    let points = build::probe_points(&case.spec.probe);
+    convergence(case, &points, Vec::new())
 }

@@ -1,5 +1,14 @@
 //! Running a case: trace every probe point at every fidelity level, evaluate the closed forms,
 //! and compare. Probe points run in parallel (rayon); results are deterministic.
+//!
+//! Work is shared where it gives the same values bit for bit, never traced again: every rung
+//! takes its contributions from one trace of a sample; a sample's arrivals are relabelled to
+//! the next sample's wavelength where a new trace would give the same ones (`Traced`: a
+//! spectrum, or a wavelength sweep over one scene, through non-dispersive media), with the
+//! wavelength-free parts of the conditioning terms formed once per trace
+//! ([`conditioning::RoundingTerms`], [`conditioning::direction_offsets`]); the detection
+//! floors and the convergence report read the arrivals the run traced
+//! ([`orders_within`]: a rung within a point's budget is its traced orders, cut).
 
 use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
@@ -7,6 +16,7 @@ use super::reference::{self, MetricKind};
 use super::spec::{FarSide, Light, Observer, Probe, ReferenceModel};
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::{self, Fidelity, SceneNeeds};
+use crate::harness::conditioning;
 use crate::optics::observable::{Observable, Returns, check_match};
 use crate::scene::source::Emitter;
 use crate::trace::path::{EnumerationLimits, EventKind, PathError, SolveOptions, Target};
@@ -31,6 +41,7 @@ pub use budget::{
     preflight, work_estimate,
 };
 use convergence::*;
+pub use convergence::{convergence_traced, orders_within};
 use metrics::*;
 use wiring::*;
 
@@ -239,8 +250,11 @@ struct PointOut {
     evanescent: bool,
     internal: usize,
     /// Kept for the detection floors (`keep`): every spectral sample's weight × observable
-    /// factor and arrivals (`detection::floors_of_traced`).
-    kept: Vec<(f64, Vec<Arrival>)>,
+    /// factor and what a fault touches of its arrivals (`detection::floors_of_traced`).
+    kept: super::detection::PointArrivals,
+    /// Kept for the convergence report (`keep_orders`): the internal reflections traced and
+    /// the arrivals of a monochrome point (`convergence::convergence`, [`orders_within`]).
+    orders: Option<(usize, Vec<Arrival>)>,
 }
 
 fn case_err(case: &Case, path: &str, msg: impl Into<String>) -> CaseError {
@@ -262,7 +276,7 @@ fn gaussian(light: &Light) -> Option<(f64, f64)> {
 }
 
 /// One spectral sample of a probe point as traced.
-pub(super) struct Sample {
+pub(super) struct Sample<'a> {
     /// Index in the spectrum, vacuum wavelength (m) and spectral weight.
     pub index: usize,
     pub lambda_m: f64,
@@ -272,18 +286,63 @@ pub(super) struct Sample {
     pub target: Option<Target>,
     /// The factor from |E|² to the probe's observable ([`reference::observable_factor`]).
     pub factor: f64,
-    pub arrivals: Vec<Arrival>,
+    /// The sample's arrivals, lent: a visitor that keeps them copies them (they are the
+    /// arrivals the next sample of a non-dispersive spectrum starts from, [`Traced`]).
+    pub arrivals: &'a [Arrival],
+    /// Whether `arrivals` were traced for this sample (`false`: the previous sample's, or a
+    /// previous point's, at this sample's wavelength, [`Traced`]); what a visitor derives from
+    /// the arrivals' paths alone stays valid while this is `false`.
+    pub retraced: bool,
     /// The scene's optics at `lambda_m` (built once per sample, for the tracer and the
     /// conditioning terms alike).
     pub optics: crate::scene::SceneOptics,
 }
 
+/// What a traced sample's arrivals depend on besides the wavelength they carry: the scene,
+/// the observer, the internal-reflection budget, the indices at the sample's wavelength and
+/// the target.
+#[derive(Clone, Debug, PartialEq)]
+struct TraceKey {
+    scene: crate::scene::Scene,
+    observer: Observer,
+    budget: (usize, bool),
+    ambient_index: f64,
+    surfaces: Vec<Option<crate::optics::interaction::SurfaceOptics>>,
+    target: Target,
+}
+
+/// The arrivals last traced, and what they were traced for ([`TraceKey`]). A sample with the
+/// same key has the same arrivals at its own wavelength ([`Arrival::at_wavelength`]: tracing
+/// uses the wavelength only through the indices and stores it in the rays), so a spectrum
+/// through non-dispersive media, and a wavelength sweep over one scene, is traced once and its
+/// arrivals are set to each sample's wavelength in place: the same arrivals, bit for bit, as a
+/// trace at that wavelength. Not across a total internal reflection or a tunnelling (a
+/// frustrated layer's coupling depends on the wavelength through its thickness,
+/// docs/PHYSICS.md §5): such arrivals are traced at every sample.
+#[derive(Default)]
+pub(super) struct Traced {
+    key: Option<TraceKey>,
+    arrivals: Vec<Arrival>,
+}
+
+impl Traced {
+    /// Whether arrivals traced at one wavelength are, at another with the same indices, the
+    /// same arrivals with that wavelength ([`Traced`]).
+    fn wavelength_free(arrivals: &[Arrival]) -> bool {
+        arrivals
+            .iter()
+            .all(|a| !a.path.has_tir && a.path.sequence.iter().all(|e| e.kind != EventKind::Tunnel))
+    }
+}
+
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
 /// spectral sample traced, one at a time (a point's arrivals over a long spectrum are never
-/// held together).
+/// held together). `traced` holds the arrivals last traced (by this point or a previous one)
+/// and is reused where they are the arrivals a new trace would give ([`Traced`]).
 pub(super) fn trace_point(
     case: &Case,
     pt: &ProbePoint,
+    traced: &mut Traced,
     mut visit: impl FnMut(&Built, &[(f64, f64)], Sample) -> Result<(), CaseError>,
 ) -> Result<(Built, usize), CaseError> {
     let spec = &case.spec;
@@ -293,10 +352,12 @@ pub(super) fn trace_point(
     let b = budget(case, &built, spectrum[spectrum.len() / 2].0)?;
     let internal = b.internal;
     let st = settings(case, &built, internal);
-    // The last traced sample's indices, target and arrivals: a sample with the same indices
-    // and target (non-dispersive media) has the same arrivals at its own wavelength
-    // ([`Arrival::at_wavelength`]), so a spectrum through such a scene is traced once.
-    let mut last: Option<(crate::scene::SceneOptics, Target, Vec<Arrival>)> = None;
+    // A previous point's arrivals serve only the same scene, observer and budget.
+    if traced.key.as_ref().is_some_and(|k| {
+        k.budget != (b.internal, b.closed) || k.observer != pt.observer || k.scene != built.scene
+    }) {
+        traced.key = None;
+    }
     for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
         let optics = built
             .scene
@@ -312,69 +373,80 @@ pub(super) fn trace_point(
                 weight,
                 target: None,
                 factor: 0.0,
-                arrivals: Vec::new(),
+                arrivals: &[],
+                retraced: true,
                 optics,
             };
             visit(&built, &spectrum, sample)?;
             continue;
         };
-        let arrivals = match &last {
-            Some((o, t, arr))
-                if *t == target
-                    && o.ambient_index == optics.ambient_index
-                    && o.surfaces == optics.surfaces =>
-            {
-                arr.iter().map(|a| a.at_wavelength(lambda_m)).collect()
+        let reuse = traced.key.as_ref().is_some_and(|k| {
+            k.target == target
+                && k.ambient_index == optics.ambient_index
+                && k.surfaces == optics.surfaces
+        });
+        if reuse {
+            for a in &mut traced.arrivals {
+                a.set_wavelength(lambda_m);
             }
-            _ => {
-                let mut arr = arrivals_at(
-                    &built,
-                    &optics,
-                    &target,
-                    &pt.observer,
-                    &st,
-                    &required_paths(case, &built),
-                )
-                .map_err(|e| {
-                    // A reference that refuses this point itself (frustrated total reflection,
-                    // an unresolvable grazing entry) names the scene's own limit: its reason wins.
-                    let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
-                        matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
-                            .then(|| {
-                                reference::value(
-                                    &r.model,
-                                    &built,
-                                    &target,
-                                    lambda_m,
-                                    spec.trace.spreading,
-                                )
-                                .err()
-                            })
-                            .flatten()
-                            .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
-                    });
-                    refused.unwrap_or_else(|| case_err(case, "$.probe", e))
+        } else {
+            traced.key = None;
+            let mut arr = arrivals_at(
+                &built,
+                &optics,
+                &target,
+                &pt.observer,
+                &st,
+                &required_paths(case, &built),
+            )
+            .map_err(|e| {
+                // A reference that refuses this point itself (frustrated total reflection,
+                // an unresolvable grazing entry) names the scene's own limit: its reason wins.
+                let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
+                    matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
+                        .then(|| {
+                            reference::value(
+                                &r.model,
+                                &built,
+                                &target,
+                                lambda_m,
+                                spec.trace.spreading,
+                            )
+                            .err()
+                        })
+                        .flatten()
+                        .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
+                });
+                refused.unwrap_or_else(|| case_err(case, "$.probe", e))
+            })?;
+            // Beyond the cap: the orders past the traced ones, closed exactly.
+            if b.closed {
+                trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
+                    case_err(
+                        case,
+                        "$.trace.airy_tail_epsilon",
+                        format!(
+                            "the Airy tail bound needs more internal reflections than the \
+                             cap of {} here (near grazing incidence), and the tail cannot \
+                             be closed exactly: {e}; loosen airy_tail_epsilon or move the \
+                             probe away from grazing",
+                            super::load::limits::MAX_INTERNAL_REFLECTIONS
+                        ),
+                    )
                 })?;
-                // Beyond the cap: the orders past the traced ones, closed exactly.
-                if b.closed {
-                    trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
-                        case_err(
-                            case,
-                            "$.trace.airy_tail_epsilon",
-                            format!(
-                                "the Airy tail bound needs more internal reflections than the \
-                                 cap of {} here (near grazing incidence), and the tail cannot \
-                                 be closed exactly: {e}; loosen airy_tail_epsilon or move the \
-                                 probe away from grazing",
-                                super::load::limits::MAX_INTERNAL_REFLECTIONS
-                            ),
-                        )
-                    })?;
-                }
-                last = Some((optics.clone(), target, arr.clone()));
-                arr
             }
-        };
+            if Traced::wavelength_free(&arr) {
+                traced.key = Some(TraceKey {
+                    scene: built.scene.clone(),
+                    observer: pt.observer.clone(),
+                    budget: (b.internal, b.closed),
+                    ambient_index: optics.ambient_index,
+                    surfaces: optics.surfaces.clone(),
+                    target,
+                });
+            }
+            traced.arrivals = arr;
+        }
         // |E|² → the observable the probe measures (R or T of a plane wave in the far field).
         let factor = reference::observable_factor(&pt.observer, &built, &target, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?;
@@ -384,7 +456,8 @@ pub(super) fn trace_point(
             weight,
             target: Some(target),
             factor,
-            arrivals,
+            arrivals: &traced.arrivals,
+            retraced: !reuse,
             optics,
         };
         visit(&built, &spectrum, sample)?;
@@ -398,7 +471,8 @@ fn run_point(
     case: &Case,
     pt: &ProbePoint,
     levels: &[Fidelity],
-    keep: bool,
+    (keep, keep_orders): (bool, bool),
+    traced: &mut Traced,
 ) -> Result<PointOut, CaseError> {
     let spec = &case.spec;
     let mut out = PointOut {
@@ -413,9 +487,9 @@ fn run_point(
         evanescent: false,
         internal: 0,
         kept: Vec::new(),
+        orders: None,
     };
     let mut kept = Vec::new();
-    let mut center_arrivals = Vec::new();
     let mut center_target = None;
     let mut center = 0.0;
     let mut acc = Accumulator::new();
@@ -423,14 +497,18 @@ fn run_point(
     // The `vector` contributions of the sample, for the conditioning terms.
     let mut vector = Vec::new();
     let mut cycles = Vec::new();
-    let (built, internal) = trace_point(case, pt, |built, spectrum, sample| {
+    // The conditioning terms' wavelength-free parts of the arrivals last traced.
+    type PathTerms = (Option<conditioning::RoundingTerms>, Option<Vec<f64>>);
+    let mut path_terms: Option<PathTerms> = None;
+    let (built, internal) = trace_point(case, pt, traced, |built, spectrum, sample| {
         let Sample {
             index: k,
             lambda_m: lambda,
             weight: w,
             target,
             factor,
-            arrivals: mut arr,
+            arrivals: arr,
+            retraced,
             optics,
         } = sample;
         // `trace::intensity` of each level, with the accumulator and contributions reused
@@ -482,34 +560,43 @@ fn run_point(
             let sources = built.scene.sources.iter().map(|s| s.intensity.sqrt()).sum();
             out.rounding += w * budget::tail_truncation(factor * i, eps, sources);
         }
+        if retraced {
+            path_terms = None;
+        }
         if let Some(r) = reference {
-            out.rounding += w
-                * factor
-                * crate::harness::conditioning::intensity_rounding(
-                    &arr,
-                    r,
-                    &vector,
-                    lambda,
-                    &built.scene,
-                    &optics,
-                );
+            // What the rounding and direction terms read from the paths alone, formed once
+            // for the arrivals of a spectrum traced once (`conditioning::RoundingTerms`,
+            // `conditioning::direction_offsets`: the same values, bit for bit).
+            let (rounding_terms, offsets) = path_terms.get_or_insert_with(|| {
+                (
+                    conditioning::RoundingTerms::of(arr, r, &built.scene),
+                    conditioning::direction_offsets(arr, &built.scene),
+                )
+            });
+            let rounding = match rounding_terms {
+                Some(t) => t.intensity_rounding(arr, &vector, lambda),
+                None => {
+                    conditioning::intensity_rounding(arr, r, &vector, lambda, &built.scene, &optics)
+                }
+            };
+            out.rounding += w * factor * rounding;
+            let direction = offsets.as_ref().map_or(0.0, |o| {
+                conditioning::direction_sensitivity_of(o, &vector, lambda)
+            });
             // The representation term: the phase (direction_sensitivity) and the amplitudes
             // (amplitude_sensitivity; the transmitted power factor's own, relative) of a scene
             // whose plane-wave direction and normals are held one rounding off.
             out.representation += w
                 * factor
-                * (crate::harness::conditioning::direction_sensitivity(
-                    &arr,
-                    &vector,
-                    lambda,
-                    &built.scene,
-                ) + crate::harness::conditioning::amplitude_sensitivity(
-                    &arr,
-                    &vector,
-                    &built.scene,
-                    &optics,
-                ) + vector_intensity.unwrap_or(0.0)
-                    * reference::observable_factor_representation(&pt.observer, built, lambda));
+                * (direction
+                    + crate::harness::conditioning::amplitude_sensitivity(
+                        arr,
+                        &vector,
+                        &built.scene,
+                        &optics,
+                    )
+                    + vector_intensity.unwrap_or(0.0)
+                        * reference::observable_factor_representation(&pt.observer, built, lambda));
         }
         for (ri, r) in spec.references.iter().enumerate() {
             if reference::kind(&r.model) == MetricKind::Intensity
@@ -567,12 +654,20 @@ fn run_point(
         }
         if k == spectrum.len() / 2 {
             out.arrivals = arr.len();
-            out.needs = trace::needs(&arr);
-            center_arrivals = if keep {
-                arr.clone()
-            } else {
-                std::mem::take(&mut arr)
-            };
+            out.needs = trace::needs(arr);
+            // Retardance and visibility are measured on the centre sample's arrivals.
+            for (ri, r) in spec.references.iter().enumerate() {
+                if matches!(
+                    reference::kind(&r.model),
+                    MetricKind::Retardance | MetricKind::Visibility
+                ) {
+                    for l in levels {
+                        if let Some(v) = special_value(&r.model, built, arr, *l) {
+                            out.special[ri].insert(*l, v);
+                        }
+                    }
+                }
+            }
             // Dark by physics: no transmitted wave, or a film beyond its top face's critical
             // angle whose transmittance is negligible (frustrated total reflection).
             out.evanescent = target.is_none()
@@ -584,12 +679,18 @@ fn run_point(
             center = lambda;
         }
         if keep {
-            kept.push((w * factor, arr));
+            kept.push((w * factor, super::detection::fault_rays(arr)));
+        }
+        if keep_orders && spectrum.len() == 1 {
+            out.orders = Some((0, arr.to_vec()));
         }
         Ok(())
     })?;
     out.internal = internal;
     out.kept = kept;
+    if let Some(o) = &mut out.orders {
+        o.0 = internal;
+    }
     let spectrum = build::spectrum(&spec.light, &pt.overrides);
     // The centre sample's target: the metrics below need a propagating wave there.
     let centre_target = || {
@@ -615,11 +716,6 @@ fn run_point(
                 if ri == 0 {
                     out.phase_representation =
                         reference::phase_representation(&r.model, &built, center);
-                }
-                for l in levels {
-                    if let Some(v) = special_value(&r.model, &built, &center_arrivals, *l) {
-                        out.special[ri].insert(*l, v);
-                    }
                 }
             }
             MetricKind::Intensity
@@ -667,12 +763,23 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
     // The points the detection floors sample keep their arrivals: the floors are measured on
     // the very arrivals traced here, not on a second trace of them.
     let sampled = super::detection::sampled_points(points.len());
+    // The points the convergence report sums over keep their arrivals too: its rungs are
+    // the traced orders up to each budget (`convergence::convergence`).
+    let orders_sampled = if convergence_report {
+        convergence_points(case, points.len())
+    } else {
+        Vec::new()
+    };
+    // Each worker keeps the arrivals it traced last: a wavelength sweep over one
+    // non-dispersive scene is traced once per worker ([`Traced`]; the same arrivals, bit for
+    // bit, whichever points a worker runs).
     let outs: Vec<PointOut> = points
         .par_iter()
         .enumerate()
-        .map(|(i, pt)| {
+        .map_init(Traced::default, |traced, (i, pt)| {
             let keep = convergence_report && sampled.binary_search(&i).is_ok();
-            run_point(case, pt, &levels, keep)
+            let keep_orders = orders_sampled.binary_search(&i).is_ok();
+            run_point(case, pt, &levels, (keep, keep_orders), traced)
         })
         .collect::<Vec<_>>()
         .into_iter()
@@ -771,7 +878,12 @@ pub fn run_with(case: &Case, convergence_report: bool) -> Result<CaseResult, Cas
         phase_representation: outs.iter().map(|o| o.phase_representation).collect(),
     };
     if convergence_report {
-        result.convergence = convergence(case, &points)?;
+        let mut outs = outs;
+        let kept_orders: Vec<Option<(usize, Vec<Arrival>)>> = orders_sampled
+            .iter()
+            .map(|&i| outs[i].orders.take())
+            .collect();
+        result.convergence = convergence(case, &points, kept_orders)?;
         let traced = outs
             .into_iter()
             .enumerate()
