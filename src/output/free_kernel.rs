@@ -7,7 +7,7 @@
 //!   [`line_launch_direction`] (the path solver's own call for a line source's direct ray);
 //! - the optical path: n₀ times the pixel's distance to the line, |v − (v·a) a| with
 //!   v = x − point from exact coordinate differences, in double-double (what the path solver's
-//!   start and the ray's segment sum to, `trace::path::reach::distance_to_line`);
+//!   start and the ray's segment sum to, [`distance_to_line`]);
 //! - the field: each channel's launch field along that direction ([`Channel::launch`],
 //!   amplitude √intensity), the same under every rung (no events, so the paper's ray is the
 //!   `vector` one);
@@ -20,12 +20,13 @@
 
 use crate::harness::case::build;
 use crate::harness::case::spec::Observer;
-use crate::optics::double_double::{DoubleDouble, two_diff};
+use crate::optics::double_double::DoubleDouble;
 use crate::optics::ray::{Field3, INCOHERENT};
 use crate::output::stack_kernel::KernelRay;
 use crate::scene::source::{Channel, Emitter, line_launch_direction};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::TraceSettings;
+use crate::trace::path::distance_to_line;
 use glam::DVec3;
 use num_complex::Complex64;
 
@@ -49,24 +50,6 @@ pub(crate) struct FreeKernel {
 #[derive(Clone, Debug, Default)]
 pub(crate) struct FreeScratch {
     paths: Vec<DoubleDouble>,
-}
-
-/// The distance (m, double-double) from `x` to the line through `point` along the unit `axis`,
-/// |v − (v·a) a| with v = x − point from exact coordinate differences: the arithmetic of the
-/// path solver's `reach::distance_to_line`.
-fn distance_to_line(point: DVec3, axis: DVec3, x: DVec3) -> DoubleDouble {
-    let v = [
-        two_diff(x.x, point.x),
-        two_diff(x.y, point.y),
-        two_diff(x.z, point.z),
-    ];
-    let along = v[0] * axis.x + v[1] * axis.y + v[2] * axis.z;
-    let w = [
-        v[0] - along * axis.x,
-        v[1] - along * axis.y,
-        v[2] - along * axis.z,
-    ];
-    (w[0] * w[0] + w[1] * w[1] + w[2] * w[2]).sqrt()
 }
 
 impl FreeKernel {

@@ -39,6 +39,7 @@ pub use far_field::FarFieldPaths;
 use far_field::*;
 use reach::*;
 pub use reach::{cannot_reach, crossing};
+pub(crate) use reach::distance_to_line;
 use stack::*;
 
 /// Reflect, refract or tunnel.

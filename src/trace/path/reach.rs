@@ -63,7 +63,7 @@ fn straight_segment_stopped(scene: &Scene, a: DVec3, b: DVec3) -> bool {
 
 /// The distance (m, double-double) from `x` to the line through `point` along the unit `axis`:
 /// |v − (v·a) a| with v = x − point from exact coordinate differences.
-pub(super) fn distance_to_line(point: DVec3, axis: DVec3, x: DVec3) -> DoubleDouble {
+pub(crate) fn distance_to_line(point: DVec3, axis: DVec3, x: DVec3) -> DoubleDouble {
     use crate::optics::double_double::two_diff;
     let v = [
         two_diff(x.x, point.x),
