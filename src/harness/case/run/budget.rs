@@ -144,15 +144,17 @@ pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
 /// Measured CPU-seconds (all threads) per work unit, used only to state the estimate in time.
 /// Calibrated with `benches/preflight.rs` (CPU time from `CLOCK_PROCESS_CPUTIME_ID`, short
-/// scenes repeated to at least 0.5 CPU-s) on the project's 2-core Intel Xeon VM on 29 November
-/// 2026 (fourteenth session, load 6–9 from other builds), together with [`WALKED_EVENT_UNITS`]
-/// and [`SAMPLE_UNITS`]: measured / estimate 1.13 (1 plate), 0.91 (2 stacked plates), 1.26
-/// (3 plates), 0.89 (plate_two_beam_paper at m = 40), 1.47 (the Airy plate walk at m = 2000,
-/// 200 angles), 0.86–1.05 (library Airy cases), 0.63–2.0 over the other library cases (the
-/// ends: tir_interference, plane waves onto a point, and michelson, a point source over four
-/// surfaces: the unit count does not see what a solved event costs per source kind); README
-/// "Limits" gives the table and the command. (Before: 4.4e-7 to 1.05e-6 on an AMD EPYC VM.)
-pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
+/// scenes repeated to at least 0.5 CPU-s) on the project's idle 2-core Intel Xeon VM on
+/// 29 November 2026 (fourteenth session's merge), together with [`WALKED_EVENT_UNITS`],
+/// [`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`] and [`MOVED_TRACE`]: measured / estimate 0.90
+/// (1 plate), 0.65 (2 stacked plates), 1.10 (3 plates), 0.99 (plate_two_beam_paper at m = 40),
+/// 1.11–1.56 (the Airy plate walk at m = 2000, 200 angles, two runs), 0.57–1.45 over the
+/// library cases (the ends: tir_interference, plane waves onto a point, and michelson, a point
+/// source over four surfaces: the unit count does not see what a solved event costs per
+/// source kind) but fresnel_rhomb, a 30-µs run at 0.48; README "Limits" gives the table and
+/// the command. (Before: 6e-7 on this VM at the thirteenth session's runner; 4.4e-7 to
+/// 1.05e-6 on an AMD EPYC VM.)
+pub const SECONDS_PER_WORK_UNIT: f64 = 5.0e-7;
 
 /// Work units of one spectral sample at one probe point besides its tracing: the contributions
 /// at every fidelity level, the conditioning terms, the closed-form references and the
@@ -160,6 +162,19 @@ pub const SECONDS_PER_WORK_UNIT: f64 = 6.0e-7;
 /// (two slits or two point sources, a few units of tracing per point) were estimated 11–18
 /// times below their run (young_paper, incoherent_sources; `benches/preflight.rs`).
 pub const SAMPLE_UNITS: f64 = 25.0;
+
+/// The cost of moving a point's traced arrivals to the next point's wavelength (the same
+/// scene, observer and budget: `trace_point` relabels every arrival instead of tracing), as a
+/// fraction of tracing them: plate_airy_wavelength (301 wavelengths, one trace) ran at 1.8
+/// times its estimate when a moved point counted no tracing (`benches/preflight.rs`).
+pub const MOVED_TRACE: f64 = 0.15;
+
+/// Work units of each further spectral sample of a probe point besides its tracing: the
+/// contributions at every fidelity level and the closed-form references again, without the
+/// point's set-up (about 5 µs on the Intel Xeon VM: coherence_length, 129 samples per point,
+/// ran at 0.35 of its estimate when every sample counted [`SAMPLE_UNITS`];
+/// `benches/preflight.rs`).
+pub const FURTHER_SAMPLE_UNITS: f64 = 8.0;
 
 /// The reflected orders of the rungs of the bounce-convergence report of monochrome Airy cases
 /// (`convergence::convergence`), each traced at 2·orders − 1 internal reflections while that is
@@ -311,7 +326,7 @@ fn walked(built: &Built, pt: &ProbePoint) -> bool {
 /// wavelength (the tracer moves one trace's arrivals to every other sample), else once per
 /// spectral sample, and the passes over the walked paths once per sample; every sample of
 /// every point adds [`SAMPLE_UNITS`] (what a sample costs besides its tracing); the bounce-convergence report of monochrome Airy cases adds its ladder of
-/// budgets (`CONVERGENCE_ORDERS`) at up to 24 of the points. A case over `MAX_PATH_EVENTS` is refused with the estimate (units
+/// budgets (`CONVERGENCE_ORDERS`) at up to 24 of the points where a rung exceeds the point's own budget (the rungs within it are summed from the arrivals traced). A case over `MAX_PATH_EVENTS` is refused with the estimate (units
 /// and seconds) and the key that drives it.
 pub fn preflight(case: &Case) -> Result<f64, CaseError> {
     work_estimate(case).map(|e| e.units())
@@ -344,6 +359,7 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
     let spec = &case.spec;
     let points = build::probe_points(&spec.probe);
     let mut budgets = Vec::with_capacity(points.len());
+    let mut previous: Option<(usize, Observer, crate::scene::Scene)> = None;
     for pt in &points {
         let built = build::build_scene(&spec.scene, &pt.overrides)
             .map_err(|e| case_err(case, "$.scene", e))?;
@@ -357,11 +373,25 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
                 crate::optics::material::Dispersion::Constant { .. }
             )
         });
+        // `trace_point` also moves the previous point's arrivals to this one where the scene,
+        // observer and budget are the same (a sweep of the wavelength only): no new trace,
+        // [`MOVED_TRACE`] of one.
+        let same = previous
+            .as_ref()
+            .is_some_and(|(m, o, sc)| *m == internal && *o == pt.observer && *sc == built.scene);
         let samples = spectrum.len() as f64;
-        let traces = if dispersionless { 1.0 } else { samples };
+        let traces = match (dispersionless, same) {
+            (true, true) => MOVED_TRACE,
+            (true, false) => 1.0,
+            (false, _) => samples,
+        };
         budgets.push((internal, walked(&built, pt), traces, samples));
+        previous = Some((internal, pt.observer.clone(), built.scene));
     }
-    let sample_units = SAMPLE_UNITS * budgets.iter().map(|b| b.3).sum::<f64>();
+    let sample_units = budgets
+        .iter()
+        .map(|b| SAMPLE_UNITS + FURTHER_SAMPLE_UNITS * (b.3 - 1.0))
+        .sum::<f64>();
     // The representative point: the largest budget, the centre among equals.
     let centre = points.len() / 2;
     let worst = budgets.iter().map(|b| b.0).max().unwrap_or(0);
@@ -396,21 +426,25 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
             )
         });
     if convergence_report {
-        // convergence::convergence: every `stride`-th point (at most 24), traced at
-        // 2·orders − 1 internal reflections for each rung of its ladder up to the budget, each
-        // rung scaled like a point of that budget (it was counted as twelve points at the full
-        // budget: 53× too much for m = 2000).
+        // convergence::convergence: at every `stride`-th point (at most 24), the rungs
+        // 2·orders − 1 of its ladder up to the largest budget of those points; a rung within
+        // the point's own budget is summed from the arrivals its run traced
+        // (`run::orders_within`), a larger one is traced, scaled like a point of that budget.
         let stride = points.len().div_ceil(24).max(1);
-        let sampled = points.len().div_ceil(stride) as f64;
-        let walked = budgets[rep].1;
+        let sampled: Vec<&(usize, bool, f64, f64)> = budgets.iter().step_by(stride).collect();
+        let top = sampled.iter().map(|b| b.0).max().unwrap_or(0).max(1);
         for orders in CONVERGENCE_ORDERS {
             let internal = 2 * orders - 1;
-            if internal > worst.max(1) {
+            if internal > top {
                 break;
             }
-            let (l, q) = scale(&(internal, walked, 1.0, 1.0));
-            linear_weight += sampled * l;
-            quadratic_weight += sampled * q;
+            for &&(own, walked, _, _) in &sampled {
+                if internal > own {
+                    let (l, q) = scale(&(internal, walked, 1.0, 1.0));
+                    linear_weight += l;
+                    quadratic_weight += q;
+                }
+            }
         }
     }
     // Enumeration stops early only where the part it has counted already exceeds the cap at
