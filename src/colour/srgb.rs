@@ -131,14 +131,14 @@ pub fn to_srgb8(linear_srgb: [f64; 3]) -> [u8; 3] {
     linear_srgb.map(|l| thresholds.partition_point(|&t| t <= l) as u8)
 }
 
-/// The reference 8-bit conversion: round(255 [`srgb_encode`](L)) per channel, a `powf` each
+/// The reference 8-bit conversion: round(255 · [`srgb_encode`]\(L)) per channel, a `powf` each
 /// (`NaN as u8` is 0). [`to_srgb8`] gives the same bytes from a table.
 pub fn to_srgb8_powf(linear_srgb: [f64; 3]) -> [u8; 3] {
     linear_srgb.map(|l| (255.0 * srgb_encode(l)).round() as u8)
 }
 
 /// The 255 thresholds of the 8-bit code, increasing: entry k − 1 is the smallest f64 L in
-/// [0, 1] whose code round(255 [`srgb_encode`](L)) is at least k, found once by bisection on
+/// [0, 1] whose code round(255 · [`srgb_encode`]\(L)) is at least k, found once by bisection on
 /// the bit patterns of [0, 1] (ordered like the values) with the `powf` path itself; it lies
 /// within rounding of the exact curve's [`srgb_decode`]((k − ½)/255) (IEC 61966-2-1 eq. (5.1)).
 pub fn srgb8_thresholds() -> &'static [f64; 255] {

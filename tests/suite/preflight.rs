@@ -80,10 +80,18 @@ fn the_estimate_is_within_2x_of_the_calibration_runs() {
             case("plate_airy_wavelength", &|_| {}),
             0.0184,
         ),
-        ("coherence_length", case("coherence_length", &|_| {}), 0.2091),
+        (
+            "coherence_length",
+            case("coherence_length", &|_| {}),
+            0.2091,
+        ),
         ("young_paper", case("young_paper", &|_| {}), 0.0054),
         ("michelson", case("michelson", &|_| {}), 0.0361),
-        ("tir_interference", case("tir_interference", &|_| {}), 0.0125),
+        (
+            "tir_interference",
+            case("tir_interference", &|_| {}),
+            0.0125,
+        ),
         (
             "incoherent_sources",
             case("incoherent_sources", &|_| {}),

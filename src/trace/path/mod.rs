@@ -37,9 +37,9 @@ mod stack;
 pub use enumerate::{EnumerationLimits, discover_sequences};
 pub use far_field::FarFieldPaths;
 use far_field::*;
+pub(crate) use reach::distance_to_line;
 use reach::*;
 pub use reach::{cannot_reach, crossing};
-pub(crate) use reach::distance_to_line;
 use stack::*;
 
 /// Reflect, refract or tunnel.

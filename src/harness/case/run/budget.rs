@@ -145,7 +145,7 @@ pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 /// Measured CPU-seconds (all threads) per work unit, used only to state the estimate in time.
 /// Calibrated with `benches/preflight.rs` (CPU time from `CLOCK_PROCESS_CPUTIME_ID`, short
 /// scenes repeated to at least 0.5 CPU-s) on the project's idle 2-core Intel Xeon VM on
-/// 29 November 2026 (fourteenth session's merge), together with [`WALKED_EVENT_UNITS`],
+/// 29 November 2026 (fourteenth session's merge), together with `WALKED_EVENT_UNITS`,
 /// [`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`] and [`MOVED_TRACE`]: measured / estimate 0.90
 /// (1 plate), 0.65 (2 stacked plates), 1.10 (3 plates), 0.99 (plate_two_beam_paper at m = 40),
 /// 1.11–1.56 (the Airy plate walk at m = 2000, 200 angles, two runs), 0.57–1.45 over the

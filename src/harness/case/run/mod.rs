@@ -37,8 +37,8 @@ pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
 pub use budget::{
-    CLOSED_TAIL_ORDERS, FURTHER_SAMPLE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, WorkEstimate,
-    preflight, work_estimate,
+    CLOSED_TAIL_ORDERS, FURTHER_SAMPLE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, SAMPLE_UNITS,
+    SECONDS_PER_WORK_UNIT, WorkEstimate, preflight, work_estimate,
 };
 use convergence::*;
 pub use convergence::{convergence_traced, orders_within};
