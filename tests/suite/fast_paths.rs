@@ -35,27 +35,7 @@ use support_airy_plate::airy_plate;
 
 const LAMBDA: f64 = 550e-9;
 
-/// A small deterministic generator, so one proptest seed stands for a whole scene.
-struct Draw(u64);
-
-impl Draw {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.unit()
-    }
-    fn chance(&mut self, p: f64) -> bool {
-        self.unit() < p
-    }
-    fn pick(&mut self, n: usize) -> usize {
-        ((self.unit() * n as f64) as usize).min(n - 1)
-    }
-}
+use crate::support::draw::Draw;
 
 fn medium(n: f64) -> Medium {
     Medium::constant("m", n)

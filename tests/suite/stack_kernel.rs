@@ -269,24 +269,7 @@ fn case_of(v: &Value) -> Case {
     .unwrap_or_else(|e| panic!("{e}: {v}"))
 }
 
-/// A deterministic stream of uniform numbers from a proptest seed.
-struct Draw(u64);
-
-impl Draw {
-    fn unit(&mut self) -> f64 {
-        self.0 = self
-            .0
-            .wrapping_mul(6364136223846793005)
-            .wrapping_add(1442695040888963407);
-        (self.0 >> 11) as f64 / (1u64 << 53) as f64
-    }
-    fn range(&mut self, a: f64, b: f64) -> f64 {
-        a + (b - a) * self.unit()
-    }
-    fn chance(&mut self, p: f64) -> bool {
-        self.unit() < p
-    }
-}
+use crate::support::draw::Draw;
 
 /// A random scene of the kernel's class and a screen over it: a plate (index 1.2–2.4,
 /// 0.3–30 µm) over air, perhaps a substrate interface below it (a second reflecting plane, so

@@ -1,6 +1,7 @@
 //! Helpers shared by several test modules (and, through `#[path]`, by `benches/airy.rs`).
 
 pub mod airy_plate;
+pub mod draw;
 pub mod library;
 pub mod schema;
 
