@@ -23,7 +23,8 @@ mod airy_plate;
 
 use airy_plate::airy_plate_of;
 use fringe::accumulate::columns::{
-    ContributionColumns, accumulate_columns, accumulate_columns_par,
+    ColumnKernel, ContributionColumns, accumulate_columns, accumulate_columns_par,
+    accumulate_columns_using,
 };
 use fringe::accumulate::fidelity::Fidelity;
 use fringe::accumulate::{Summation, accumulate_points, accumulate_points_par};
@@ -100,6 +101,23 @@ fn accumulate() {
                 black_box(&out);
             },
         );
+        if ColumnKernel::Avx2.available() {
+            measure(
+                &format!("accumulate T1M_P16k_G4 columns avx2 1t {name}"),
+                20,
+                t,
+                || {
+                    accumulate_columns_using(
+                        ColumnKernel::Avx2,
+                        black_box(&cols),
+                        &offsets,
+                        s,
+                        &mut out,
+                    );
+                    black_box(&out);
+                },
+            );
+        }
         measure(
             &format!("accumulate T1M_P16k_G4 columns 2t {name}"),
             20,

@@ -26,7 +26,7 @@
 //! rows 107 / 90, columns 98 / 81 per contribution (compensated / plain).
 
 use super::{
-    Accumulator, BLOCK, Contribution, FAST_LIMIT, INCOHERENT, Summation, check_offsets,
+    Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
     par_over_points, phasor_from_cycles, phasor_quarters,
 };
 use crate::optics::ray::Field3;
@@ -127,6 +127,46 @@ impl Default for TrigBlock {
     }
 }
 
+/// The code that adds columns. Every kernel gives the same bits ([`Accumulator::add`]'s).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum ColumnKernel {
+    /// The fastest the running CPU has (what [`Accumulator::extend_columns`] and the batch
+    /// functions use).
+    #[default]
+    Auto,
+    /// One contribution at a time through [`Accumulator::add_parts`]'s code (any CPU).
+    Portable,
+    /// 4-lane phasors; a contribution's field in a 4-lane and a 2-lane register (x86-64 AVX2).
+    Avx2,
+    /// 8-lane phasors; a contribution's field in one 8-lane register (x86-64 AVX2 + AVX-512F).
+    Avx512,
+}
+
+impl ColumnKernel {
+    /// Whether the running CPU can run this kernel.
+    pub fn available(self) -> bool {
+        match self {
+            ColumnKernel::Auto | ColumnKernel::Portable => true,
+            #[cfg(target_arch = "x86_64")]
+            ColumnKernel::Avx2 => super::avx2(),
+            #[cfg(target_arch = "x86_64")]
+            ColumnKernel::Avx512 => super::avx2() && std::arch::is_x86_feature_detected!("avx512f"),
+            #[cfg(not(target_arch = "x86_64"))]
+            _ => false,
+        }
+    }
+
+    /// The kernel that runs: `Auto` resolved to the fastest available.
+    fn resolve(self) -> ColumnKernel {
+        match self {
+            ColumnKernel::Auto if ColumnKernel::Avx512.available() => ColumnKernel::Avx512,
+            ColumnKernel::Auto if ColumnKernel::Avx2.available() => ColumnKernel::Avx2,
+            ColumnKernel::Auto => ColumnKernel::Portable,
+            k => k,
+        }
+    }
+}
+
 impl Accumulator {
     /// Adds contributions given as columns: `(coherence_ids[j], phase_cycles[j], fields[j])`
     /// is added as by [`Accumulator::add_parts`], in order, with the same bits. The three
@@ -137,6 +177,23 @@ impl Accumulator {
         phase_cycles: &[f64],
         fields: &[Field3],
     ) {
+        self.extend_columns_using(ColumnKernel::Auto, coherence_ids, phase_cycles, fields);
+    }
+
+    /// [`Accumulator::extend_columns`] through the given kernel (all give the same bits; for
+    /// tests and benches). Panics if the running CPU cannot run it ([`ColumnKernel::available`])
+    /// or if the slices have different lengths.
+    pub fn extend_columns_using(
+        &mut self,
+        kernel: ColumnKernel,
+        coherence_ids: &[u64],
+        phase_cycles: &[f64],
+        fields: &[Field3],
+    ) {
+        assert!(
+            kernel.available(),
+            "columns: kernel {kernel:?} is not available on this CPU"
+        );
         assert!(
             phase_cycles.len() == coherence_ids.len() && fields.len() == coherence_ids.len(),
             "columns must have equal lengths (ids {}, phases {}, fields {})",
@@ -146,34 +203,67 @@ impl Accumulator {
         );
         self.invalidate();
         let comp = self.summation == Summation::Compensated;
-        #[cfg(target_arch = "x86_64")]
-        if super::avx2() {
-            // SAFETY: `columns_avx2` only requires AVX2, which the running CPU has (checked by
-            // `avx2()` just above). Measured reason: module docs (Performance) and the
-            // `columns_*` benches in benches/accumulate.rs.
-            unsafe {
+        let (a, b, c) = (coherence_ids, phase_cycles, fields);
+        match kernel.resolve() {
+            // SAFETY (both arms): `resolve` returns a SIMD kernel only where the running CPU
+            // has its features (AVX2; AVX2 and AVX-512F), all that the kernel requires.
+            // Measured reason: module docs (Performance) and the `columns_*` benches in
+            // benches/accumulate.rs.
+            #[cfg(target_arch = "x86_64")]
+            ColumnKernel::Avx512 => unsafe {
                 if comp {
-                    self.columns_avx2::<true>(coherence_ids, phase_cycles, fields)
+                    self.columns_avx512::<true>(a, b, c)
                 } else {
-                    self.columns_avx2::<false>(coherence_ids, phase_cycles, fields)
+                    self.columns_avx512::<false>(a, b, c)
                 }
-            }
-            return;
-        }
-        for ((&id, &c), f) in coherence_ids.iter().zip(phase_cycles).zip(fields) {
-            if comp {
-                self.add_mode::<true>(id, c, f);
-            } else {
-                self.add_mode::<false>(id, c, f);
+            },
+            #[cfg(target_arch = "x86_64")]
+            ColumnKernel::Avx2 => unsafe {
+                if comp {
+                    self.columns_avx2::<true>(a, b, c)
+                } else {
+                    self.columns_avx2::<false>(a, b, c)
+                }
+            },
+            _ => {
+                for ((&id, &c), f) in a.iter().zip(b).zip(c) {
+                    if comp {
+                        self.add_mode::<true>(id, c, f);
+                    } else {
+                        self.add_mode::<false>(id, c, f);
+                    }
+                }
             }
         }
     }
 
-    /// The column kernel: a block's phasors in one vector loop, then each contribution's
-    /// `E·e^{i2πc}` added to its group with 4-lane (x, y) and 2-lane (z) operations.
+    /// The column kernel compiled for AVX2.
     #[cfg(target_arch = "x86_64")]
     #[target_feature(enable = "avx2")]
     fn columns_avx2<const COMP: bool>(&mut self, ids: &[u64], cycles: &[f64], fields: &[Field3]) {
+        self.columns_kernel::<COMP, false>(ids, cycles, fields)
+    }
+
+    /// The column kernel compiled for AVX-512F: the phasor loop in 8 lanes and a
+    /// contribution's six field components in one register (same operations, same bits).
+    #[cfg(target_arch = "x86_64")]
+    #[target_feature(enable = "avx2,avx512f")]
+    fn columns_avx512<const COMP: bool>(&mut self, ids: &[u64], cycles: &[f64], fields: &[Field3]) {
+        self.columns_kernel::<COMP, true>(ids, cycles, fields)
+    }
+
+    /// The column kernel: a block's phasors in one vector loop, then each contribution's
+    /// `E·e^{i2πc}` added to its group (4-lane (x, y) and 2-lane (z) operations, or one 8-lane
+    /// masked operation when `W512`), with the ids and phases two blocks ahead and the fields
+    /// one block ahead asked for by prefetch hints.
+    #[cfg(target_arch = "x86_64")]
+    #[inline(always)]
+    fn columns_kernel<const COMP: bool, const W512: bool>(
+        &mut self,
+        ids: &[u64],
+        cycles: &[f64],
+        fields: &[Field3],
+    ) {
         use std::arch::x86_64::*;
         let Accumulator {
             table,
@@ -182,8 +272,6 @@ impl Accumulator {
             ..
         } = self;
         let trig = trig.get_or_insert_with(Box::default);
-        // Lanes (re, im, re, im): −sin in the re lanes, +sin in the im lanes.
-        let neg_re = _mm256_set_pd(0.0, -0.0, 0.0, -0.0);
         let mut start = 0;
         while start < ids.len() {
             let len = (ids.len() - start).min(BLOCK);
@@ -215,20 +303,30 @@ impl Accumulator {
                     (*co, *si) = (p.re, p.im);
                 }
             }
+            // Ask for the ids and phases two blocks ahead (64 bytes a line, 8 per line).
+            for k in (0..BLOCK).step_by(8) {
+                prefetch(cycles.as_ptr().wrapping_add(start + 2 * BLOCK + k));
+                prefetch(ids.as_ptr().wrapping_add(start + 2 * BLOCK + k));
+            }
             // Grouped sums.
             // SAFETY (loads below): `first` is a `[u64; 4]` (32 bytes, unaligned load).
             let mut first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
             for j in 0..len {
                 let (id, field) = (idb[j], &fb[j]);
+                // The field a block ahead (48 bytes apart: every cache line is asked for).
+                prefetch(std::ptr::from_ref(field).wrapping_add(BLOCK));
                 if id == INCOHERENT {
                     let e2 = field[0].norm_sqr() + field[1].norm_sqr() + field[2].norm_sqr();
                     incoherent.add(e2, COMP);
                     continue;
                 }
-                let hit = _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(
-                    first,
-                    _mm256_set1_epi64x(id as i64),
-                )));
+                // SAFETY: the caller has AVX2 (`columns_avx2`, `columns_avx512`).
+                let hit = unsafe {
+                    _mm256_movemask_pd(_mm256_castsi256_pd(_mm256_cmpeq_epi64(
+                        first,
+                        _mm256_set1_epi64x(id as i64),
+                    )))
+                };
                 let g = if hit != 0 {
                     hit.trailing_zeros() as usize
                 } else {
@@ -237,52 +335,123 @@ impl Accumulator {
                     first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
                     g
                 };
-                let sum = &mut table.sums[g];
-                let f = field.as_ptr().cast::<f64>();
-                // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous
-                // f64 at `f`; `sum.s` and `sum.c` are `[f64; 6]` at 64-byte aligned offsets of
-                // the `#[repr(C, align(64))]` `GroupSum`, so elements 0..4 are 32-byte and 4..6
-                // 16-byte aligned (aligned loads and stores).
+                // SAFETY: the caller has AVX2, and AVX-512F when `W512` (`columns_avx512`).
                 unsafe {
-                    let a = _mm256_loadu_pd(f); // x.re x.im y.re y.im
-                    let a2 = _mm_loadu_pd(f.add(4)); // z.re z.im
-                    let b = _mm256_permute_pd::<0b0101>(a); // x.im x.re y.im y.re
-                    let b2 = _mm_permute_pd::<0b01>(a2);
-                    let pc = _mm256_set1_pd(trig.cos[j]);
-                    let m = _mm256_xor_pd(_mm256_set1_pd(trig.sin[j]), neg_re);
-                    // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
-                    let p = _mm256_add_pd(_mm256_mul_pd(a, pc), _mm256_mul_pd(b, m));
-                    let p2 = _mm_add_pd(
-                        _mm_mul_pd(a2, _mm256_castpd256_pd128(pc)),
-                        _mm_mul_pd(b2, _mm256_castpd256_pd128(m)),
-                    );
-                    let sp = sum.s.as_mut_ptr();
-                    let s = _mm256_load_pd(sp);
-                    let s2 = _mm_load_pd(sp.add(4));
-                    if COMP {
-                        // TwoSum (`two_sum_add`): t = s + x, z = t − s,
-                        // c += (s − (t − z)) + (x − z), s = t.
-                        let cp = sum.c.as_mut_ptr();
-                        let t = _mm256_add_pd(s, p);
-                        let z = _mm256_sub_pd(t, s);
-                        let e = _mm256_add_pd(
-                            _mm256_sub_pd(s, _mm256_sub_pd(t, z)),
-                            _mm256_sub_pd(p, z),
-                        );
-                        _mm256_store_pd(cp, _mm256_add_pd(_mm256_load_pd(cp), e));
-                        _mm256_store_pd(sp, t);
-                        let t2 = _mm_add_pd(s2, p2);
-                        let z2 = _mm_sub_pd(t2, s2);
-                        let e2 = _mm_add_pd(_mm_sub_pd(s2, _mm_sub_pd(t2, z2)), _mm_sub_pd(p2, z2));
-                        _mm_store_pd(cp.add(4), _mm_add_pd(_mm_load_pd(cp.add(4)), e2));
-                        _mm_store_pd(sp.add(4), t2);
+                    if W512 {
+                        add_one_512::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j])
                     } else {
-                        _mm256_store_pd(sp, _mm256_add_pd(s, p));
-                        _mm_store_pd(sp.add(4), _mm_add_pd(s2, p2));
+                        add_one_256::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j])
                     }
                 }
             }
             start += len;
+        }
+    }
+}
+
+/// A hint to bring the cache line of `p` into L1 (no effect on results). `p` may point anywhere,
+/// past the end of its allocation included: a prefetch never faults (callers form it with
+/// `wrapping_add`).
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+fn prefetch<T>(p: *const T) {
+    use std::arch::x86_64::{_MM_HINT_T0, _mm_prefetch};
+    // SAFETY: `_mm_prefetch` (SSE, baseline x86-64) only hints the cache; the address is never
+    // dereferenced.
+    unsafe { _mm_prefetch::<_MM_HINT_T0>(p.cast::<i8>()) };
+}
+
+/// `sum += E·(co + i si)` with the operations and operand order of `GroupTable::add_field`
+/// and `two_sum_add` (no FMA), in 4-lane (x, y) and 2-lane (z) form.
+///
+/// # Safety
+/// The CPU must have AVX2.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn add_one_256<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: f64, si: f64) {
+    use std::arch::x86_64::*;
+    let f = field.as_ptr().cast::<f64>();
+    // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous f64 at `f`;
+    // `sum.s` and `sum.c` are `[f64; 6]` at 64-byte aligned offsets of the
+    // `#[repr(C, align(64))]` `GroupSum`, so elements 0..4 are 32-byte and 4..6 16-byte aligned
+    // (aligned loads and stores). AVX2: the caller's promise.
+    unsafe {
+        // Lanes (re, im, re, im): −sin in the re lanes, +sin in the im lanes.
+        let neg_re = _mm256_set_pd(0.0, -0.0, 0.0, -0.0);
+        let a = _mm256_loadu_pd(f); // x.re x.im y.re y.im
+        let a2 = _mm_loadu_pd(f.add(4)); // z.re z.im
+        let b = _mm256_permute_pd::<0b0101>(a); // x.im x.re y.im y.re
+        let b2 = _mm_permute_pd::<0b01>(a2);
+        let pc = _mm256_set1_pd(co);
+        let m = _mm256_xor_pd(_mm256_set1_pd(si), neg_re);
+        // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
+        let p = _mm256_add_pd(_mm256_mul_pd(a, pc), _mm256_mul_pd(b, m));
+        let p2 = _mm_add_pd(
+            _mm_mul_pd(a2, _mm256_castpd256_pd128(pc)),
+            _mm_mul_pd(b2, _mm256_castpd256_pd128(m)),
+        );
+        let sp = sum.s.as_mut_ptr();
+        let s = _mm256_load_pd(sp);
+        let s2 = _mm_load_pd(sp.add(4));
+        if COMP {
+            // TwoSum (`two_sum_add`): t = s + x, z = t − s, c += (s − (t − z)) + (x − z), s = t.
+            let cp = sum.c.as_mut_ptr();
+            let t = _mm256_add_pd(s, p);
+            let z = _mm256_sub_pd(t, s);
+            let e = _mm256_add_pd(_mm256_sub_pd(s, _mm256_sub_pd(t, z)), _mm256_sub_pd(p, z));
+            _mm256_store_pd(cp, _mm256_add_pd(_mm256_load_pd(cp), e));
+            _mm256_store_pd(sp, t);
+            let t2 = _mm_add_pd(s2, p2);
+            let z2 = _mm_sub_pd(t2, s2);
+            let e2 = _mm_add_pd(_mm_sub_pd(s2, _mm_sub_pd(t2, z2)), _mm_sub_pd(p2, z2));
+            _mm_store_pd(cp.add(4), _mm_add_pd(_mm_load_pd(cp.add(4)), e2));
+            _mm_store_pd(sp.add(4), t2);
+        } else {
+            _mm256_store_pd(sp, _mm256_add_pd(s, p));
+            _mm_store_pd(sp.add(4), _mm_add_pd(s2, p2));
+        }
+    }
+}
+
+/// [`add_one_256`] with the six field components (x, y, z; re, im) in lanes 0..6 of one
+/// 8-lane register (lanes 6 and 7 zero and never stored): the same operations lane by lane,
+/// so the same bits.
+///
+/// # Safety
+/// The CPU must have AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn add_one_512<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: f64, si: f64) {
+    use std::arch::x86_64::*;
+    const SIX: __mmask8 = 0b0011_1111;
+    // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous f64; `sum.s`
+    // and `sum.c` are `[f64; 6]`; the masked loads and stores touch lanes 0..6 only.
+    // AVX-512F: the caller's promise.
+    unsafe {
+        // −0.0 in the re lanes: xor flips the sign of sin there (re, im, re, im, …).
+        let neg_re = _mm512_castpd_si512(_mm512_set_pd(0.0, -0.0, 0.0, -0.0, 0.0, -0.0, 0.0, -0.0));
+        let a = _mm512_maskz_loadu_pd(SIX, field.as_ptr().cast::<f64>());
+        let b = _mm512_permute_pd::<0b0101_0101>(a); // x.im x.re y.im y.re z.im z.re 0 0
+        let pc = _mm512_set1_pd(co);
+        let m = _mm512_castsi512_pd(_mm512_xor_si512(
+            _mm512_castpd_si512(_mm512_set1_pd(si)),
+            neg_re,
+        ));
+        // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
+        let p = _mm512_add_pd(_mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
+        let sp = sum.s.as_mut_ptr();
+        let s = _mm512_maskz_loadu_pd(SIX, sp);
+        if COMP {
+            // TwoSum (`two_sum_add`): t = s + x, z = t − s, c += (s − (t − z)) + (x − z), s = t.
+            let cp = sum.c.as_mut_ptr();
+            let t = _mm512_add_pd(s, p);
+            let z = _mm512_sub_pd(t, s);
+            let e = _mm512_add_pd(_mm512_sub_pd(s, _mm512_sub_pd(t, z)), _mm512_sub_pd(p, z));
+            let c = _mm512_add_pd(_mm512_maskz_loadu_pd(SIX, cp), e);
+            _mm512_mask_storeu_pd(cp, SIX, c);
+            _mm512_mask_storeu_pd(sp, SIX, t);
+        } else {
+            _mm512_mask_storeu_pd(sp, SIX, _mm512_add_pd(s, p));
         }
     }
 }
@@ -296,10 +465,22 @@ pub fn accumulate_columns(
     summation: Summation,
     out: &mut [f64],
 ) {
+    accumulate_columns_using(ColumnKernel::Auto, columns, offsets, summation, out);
+}
+
+/// [`accumulate_columns`] through the given kernel (all give the same bits; for tests and
+/// benches). Panics if the running CPU cannot run it ([`ColumnKernel::available`]).
+pub fn accumulate_columns_using(
+    kernel: ColumnKernel,
+    columns: &ContributionColumns,
+    offsets: &[usize],
+    summation: Summation,
+    out: &mut [f64],
+) {
     check_offsets(columns.len(), offsets, out);
     let mut acc = Accumulator::with_summation(summation);
     for (k, o) in out.iter_mut().enumerate() {
-        *o = point_intensity(&mut acc, columns, offsets[k]..offsets[k + 1]);
+        *o = point_intensity(kernel, &mut acc, columns, offsets[k]..offsets[k + 1]);
     }
 }
 
@@ -312,17 +493,19 @@ pub fn accumulate_columns_par(
 ) {
     check_offsets(columns.len(), offsets, out);
     par_over_points(columns.len(), summation, out, |acc, k| {
-        point_intensity(acc, columns, offsets[k]..offsets[k + 1])
+        point_intensity(ColumnKernel::Auto, acc, columns, offsets[k]..offsets[k + 1])
     });
 }
 
 fn point_intensity(
+    kernel: ColumnKernel,
     acc: &mut Accumulator,
     columns: &ContributionColumns,
     r: std::ops::Range<usize>,
 ) -> f64 {
     acc.clear();
-    acc.extend_columns(
+    acc.extend_columns_using(
+        kernel,
         &columns.coherence_ids[r.clone()],
         &columns.phase_cycles[r.clone()],
         &columns.fields[r],

@@ -3,7 +3,8 @@
 //! under test.
 
 use fringe::accumulate::columns::{
-    ContributionColumns, accumulate_columns, accumulate_columns_par,
+    ColumnKernel, ContributionColumns, accumulate_columns, accumulate_columns_par,
+    accumulate_columns_using,
 };
 use fringe::accumulate::{
     Accumulator, Contribution, Summation, accumulate_points, accumulate_points_par, intensity,
@@ -787,6 +788,36 @@ fn added_as_columns(s: Summation, cs: &[Contribution]) -> (f64, Vec<(u64, [Compl
     (acc.intensity(), acc.groups().to_vec())
 }
 
+/// The same through [`Accumulator::extend_columns_using`] with the given kernel.
+fn added_as_columns_using(
+    kernel: ColumnKernel,
+    s: Summation,
+    cs: &[Contribution],
+) -> (f64, Vec<(u64, [Complex64; 3])>) {
+    let cols = ContributionColumns::from(cs);
+    let mut acc = Accumulator::with_summation(s);
+    acc.extend_columns_using(
+        kernel,
+        &cols.coherence_ids,
+        &cols.phase_cycles,
+        &cols.fields,
+    );
+    (acc.intensity(), acc.groups().to_vec())
+}
+
+/// Every column kernel the running CPU has (the explicit ones, so that on an AVX-512 machine
+/// the AVX2 and portable kernels are checked too, not only the one `Auto` picks).
+fn column_kernels() -> Vec<ColumnKernel> {
+    [
+        ColumnKernel::Portable,
+        ColumnKernel::Avx2,
+        ColumnKernel::Avx512,
+    ]
+    .into_iter()
+    .filter(|k| k.available())
+    .collect()
+}
+
 /// Bit-for-bit equality of intensities and of every group's id and field components.
 fn assert_same_bits(
     what: &str,
@@ -836,11 +867,31 @@ fn columns_equal_the_rows_bit_for_bit() {
             accumulate_points(&d, &offsets, s, &mut rows);
             accumulate_columns(&cols, &offsets, s, &mut serial);
             accumulate_columns_par(&cols, &offsets, s, &mut par);
+            for kernel in column_kernels() {
+                let mut using = vec![0.0; points];
+                accumulate_columns_using(kernel, &cols, &offsets, s, &mut using);
+                for k in 0..points {
+                    assert_eq!(
+                        using[k].to_bits(),
+                        rows[k].to_bits(),
+                        "point {k} {s:?}: columns {kernel:?} {:e} vs rows {:e}",
+                        using[k],
+                        rows[k]
+                    );
+                }
+            }
             let mut worst_naive: f64 = 0.0;
             for k in 0..points {
                 let cs = &d[offsets[k]..offsets[k + 1]];
                 let one = added_one_by_one(s, cs);
                 assert_same_bits(&format!("point {k} {s:?}"), &one, &added_as_columns(s, cs));
+                for kernel in column_kernels() {
+                    assert_same_bits(
+                        &format!("point {k} {s:?} {kernel:?}"),
+                        &one,
+                        &added_as_columns_using(kernel, s, cs),
+                    );
+                }
                 for (name, v) in [
                     ("rows", rows[k]),
                     ("columns", serial[k]),
@@ -887,6 +938,16 @@ fn columns_take_the_wide_phase_path_like_the_rows() {
         let (a, b) = (added_one_by_one(s, &nan).0, added_as_columns(s, &nan).0);
         println!("NaN phase {s:?}: add {a}, columns {b}");
         assert!(a.is_nan() && b.is_nan());
+        for kernel in column_kernels() {
+            assert_same_bits(
+                &format!("wide phases {s:?} {kernel:?}"),
+                &added_one_by_one(s, &cs),
+                &added_as_columns_using(kernel, s, &cs),
+            );
+            let b = added_as_columns_using(kernel, s, &nan).0;
+            println!("NaN phase {s:?}: {kernel:?} {b}");
+            assert!(b.is_nan());
+        }
     }
 }
 
@@ -925,6 +986,27 @@ fn columns_push_get_and_clear() {
     }
     cols.clear();
     assert!(cols.is_empty());
+}
+
+#[test]
+fn column_kernels_cover_the_cpu() {
+    // The explicit kernels the tests above run: on an AVX-512F machine all three, so the bit
+    // checks exercise the 8-lane kernel, the 4-lane one and the portable one.
+    let ks = column_kernels();
+    println!("column kernels available: {ks:?}");
+    assert!(ks.contains(&ColumnKernel::Portable));
+    #[cfg(target_arch = "x86_64")]
+    {
+        assert_eq!(
+            ks.contains(&ColumnKernel::Avx2),
+            std::arch::is_x86_feature_detected!("avx2")
+        );
+        assert_eq!(
+            ks.contains(&ColumnKernel::Avx512),
+            std::arch::is_x86_feature_detected!("avx2")
+                && std::arch::is_x86_feature_detected!("avx512f")
+        );
+    }
 }
 
 #[test]
@@ -975,6 +1057,13 @@ proptest! {
         let mut acc = Accumulator::with_summation(s);
         acc.extend_columns(&cols.coherence_ids[..m], &cols.phase_cycles[..m], &cols.fields[..m]);
         acc.extend_columns(&cols.coherence_ids[m..], &cols.phase_cycles[m..], &cols.fields[m..]);
-        assert_same_bits("split columns", &added_one_by_one(s, &cs), &(acc.intensity(), acc.groups().to_vec()));
+        let one = added_one_by_one(s, &cs);
+        assert_same_bits("split columns", &one, &(acc.intensity(), acc.groups().to_vec()));
+        for kernel in column_kernels() {
+            let mut acc = Accumulator::with_summation(s);
+            acc.extend_columns_using(kernel, &cols.coherence_ids[..m], &cols.phase_cycles[..m], &cols.fields[..m]);
+            acc.extend_columns_using(kernel, &cols.coherence_ids[m..], &cols.phase_cycles[m..], &cols.fields[m..]);
+            assert_same_bits(&format!("split columns {kernel:?}"), &one, &(acc.intensity(), acc.groups().to_vec()));
+        }
     }
 }
