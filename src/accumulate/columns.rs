@@ -414,8 +414,10 @@ unsafe fn add_one_256<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
 }
 
 /// [`add_one_256`] with the six field components (x, y, z; re, im) in lanes 0..6 of one
-/// 8-lane register (lanes 6 and 7 zero and never stored): the same operations lane by lane,
-/// so the same bits.
+/// 8-lane register: the same operations lane by lane, so the same bits. Lanes 6 and 7 of the
+/// product are zero, so the group sum is loaded and stored as its whole 64-byte line (`s` and
+/// its padding; `c` and its padding), padding unchanged: a plain aligned store that the next
+/// contribution of the group can load without a masked-store forwarding stall.
 ///
 /// # Safety
 /// The CPU must have AVX-512F.
@@ -424,8 +426,10 @@ unsafe fn add_one_256<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
 unsafe fn add_one_512<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: f64, si: f64) {
     use std::arch::x86_64::*;
     const SIX: __mmask8 = 0b0011_1111;
-    // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous f64; `sum.s`
-    // and `sum.c` are `[f64; 6]`; the masked loads and stores touch lanes 0..6 only.
+    // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous f64 (masked
+    // load of those 6). `GroupSum` is `#[repr(C, align(64))]` { s: [f64; 6], _pad_s: [f64; 2],
+    // c: [f64; 6], _pad_c: [f64; 2] }: 16 f64, `s` + `_pad_s` the first 64-byte aligned line
+    // and `c` + `_pad_c` the second, read and written through a pointer to the whole struct.
     // AVX-512F: the caller's promise.
     unsafe {
         // −0.0 in the re lanes: xor flips the sign of sin there (re, im, re, im, …).
@@ -438,20 +442,20 @@ unsafe fn add_one_512<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
             neg_re,
         ));
         // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
-        let p = _mm512_add_pd(_mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
-        let sp = sum.s.as_mut_ptr();
-        let s = _mm512_maskz_loadu_pd(SIX, sp);
+        // Lanes 6, 7 forced to +0 (whatever `co`, `si`), so the padding lanes stay unchanged.
+        let p = _mm512_maskz_add_pd(SIX, _mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
+        let sp = std::ptr::from_mut(sum).cast::<f64>();
+        let s = _mm512_load_pd(sp);
         if COMP {
             // TwoSum (`two_sum_add`): t = s + x, z = t − s, c += (s − (t − z)) + (x − z), s = t.
-            let cp = sum.c.as_mut_ptr();
+            let cp = sp.add(8);
             let t = _mm512_add_pd(s, p);
             let z = _mm512_sub_pd(t, s);
             let e = _mm512_add_pd(_mm512_sub_pd(s, _mm512_sub_pd(t, z)), _mm512_sub_pd(p, z));
-            let c = _mm512_add_pd(_mm512_maskz_loadu_pd(SIX, cp), e);
-            _mm512_mask_storeu_pd(cp, SIX, c);
-            _mm512_mask_storeu_pd(sp, SIX, t);
+            _mm512_store_pd(cp, _mm512_add_pd(_mm512_load_pd(cp), e));
+            _mm512_store_pd(sp, t);
         } else {
-            _mm512_mask_storeu_pd(sp, SIX, _mm512_add_pd(s, p));
+            _mm512_store_pd(sp, _mm512_add_pd(s, p));
         }
     }
 }
