@@ -8,22 +8,41 @@
 //! cosines and sines to two aligned scratch rows (no interleaving shuffles), and the group loop
 //! reads each field as one 48-byte vector.
 //!
-//! The AVX2 kernel finds the group of a contribution by one 4-lane compare against the ids of
-//! the first four groups of the point (the hash table of `mod.rs` only for a fifth and later
-//! group, or a new one), and forms `E·e^{i2πc}` and the TwoSum update with the operations and
-//! the operand order of `GroupTable::add_field` (no FMA, no reassociation), so every group sum,
-//! compensation term and intensity has the bits of [`Accumulator::add`] (checked in
-//! `tests/suite/accumulate.rs`). Without AVX2 the columns go through [`Accumulator::add_parts`].
+//! The SIMD kernels ([`ColumnKernel`], picked at run time: AVX-512F if the CPU has it, else
+//! AVX2, else the portable loop through [`Accumulator::add_parts`]) compute a block's phasors
+//! in one vector loop (8 lanes with AVX-512F, 4 with AVX2; the bits of [`phasor_from_cycles`]),
+//! find the group of a contribution by one 4-lane compare against the ids of the first four
+//! groups of the point (the hash table of `mod.rs` only for a fifth and later group, or a new
+//! one), and form `E·e^{i2πc}` and the TwoSum update with the operations and the operand order
+//! of `GroupTable::add_field` (no FMA, no reassociation): in a 4-lane (x, y) and a 2-lane (z)
+//! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
+//! compensation term and intensity has the bits of [`Accumulator::add`], whichever kernel runs
+//! (`tests/suite/accumulate.rs` checks each kernel the CPU has through
+//! [`Accumulator::extend_columns_using`] and [`accumulate_columns_using`]). The kernels ask for
+//! the fields one block (64 contributions, 3 KiB) ahead and the ids and phases two blocks ahead
+//! by prefetch hints.
 //!
 //! # Performance
 //!
-//! Measured 29 November 2026 on the project's 2-core AMD EPYC VM while it was loaded by parallel
-//! builds (load average ~19), so in CPU-seconds (`cargo bench -p fringe-benches --bench
-//! cpu_rates -- accumulate`, 1 M contributions, 16 k points, 4 groups): rows 47–49 M
-//! contributions per CPU-second compensated and 54 M plain, columns 66–87 M and 71–72 M; a bare
-//! streaming read of the same 64 MiB 114–123 M per CPU-second (the bytes alone cost about as
-//! much as the arithmetic). Instruction counts (callgrind, a stand-alone copy of both kernels):
-//! rows 107 / 90, columns 98 / 81 per contribution (compensated / plain).
+//! Measured 29 November 2026 (15:00 UTC) on the project's 2-core AMD EPYC VM (AVX-512F), load
+//! average 1.3–1.7 from another helper's work, two runs interleaved with main's binary (1ab8d80)
+//! and `python3 examples/accumulate_numpy.py` (`cargo bench -p fringe-benches --bench cpu_rates
+//! -- accumulate`, 1 M contributions, 16 k points, 4 groups), M contributions/s wall:
+//!
+//! | | before (AVX2, no prefetch) | AVX-512F + prefetch | AVX2 + prefetch |
+//! |---|---|---|---|
+//! | 1 thread plain | 85–88 | 122–131 | 117–121 |
+//! | 2 threads plain | 147–230 | 280–287 | |
+//! | 1 thread compensated | 80–81 | 99–118 | 93–107 |
+//! | 2 threads compensated | 154–186 | 253–259 | |
+//!
+//! numpy `bincount` of the same work in the same series: 12.4–12.9 M/s, so 2 threads plain is
+//! 22–23× numpy. Most of the gain is the field prefetch (without it the AVX-512F kernel ran at
+//! 64–70 M/s on 1 thread); the 8-lane phasors and field update add 5–10 % over AVX2 + prefetch.
+//! Loading and storing a group's sum as its whole 64-byte line instead of masked 6-lane moves
+//! took 1 thread compensated from 89 to 122 M/s (a masked store does not forward to the next
+//! load of the same group). A bare streaming read of the same 64 MiB ran at 154–250 M/s on 1
+//! thread and 652–677 on 2 in the same series.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
