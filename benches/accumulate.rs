@@ -17,7 +17,8 @@
 
 use criterion::{BenchmarkId, Criterion, Throughput, criterion_group, criterion_main};
 use fringe::accumulate::columns::{
-    ContributionColumns, accumulate_columns, accumulate_columns_par,
+    ColumnKernel, ContributionColumns, accumulate_columns, accumulate_columns_par,
+    accumulate_columns_using,
 };
 use fringe::accumulate::{
     Accumulator, Contribution, Summation, accumulate_points, accumulate_points_par,
@@ -160,6 +161,16 @@ fn bench_accumulate(c: &mut Criterion) {
                     black_box(&out);
                 })
             });
+            // The AVX2 kernel on its own (`columns_1t` runs the AVX-512F one where the CPU has it).
+            if ColumnKernel::Avx2.available() {
+                grp.bench_function(BenchmarkId::new("columns_avx2_1t", name), |b| {
+                    b.iter(|| {
+                        let cols = black_box(&cols);
+                        accumulate_columns_using(ColumnKernel::Avx2, cols, &offsets, s, &mut out);
+                        black_box(&out);
+                    })
+                });
+            }
             grp.bench_function(BenchmarkId::new("columns_2t", name), |b| {
                 b.iter(|| {
                     pool2.install(|| {
