@@ -24,25 +24,26 @@
 //!
 //! # Performance
 //!
-//! Measured 29 November 2026 (15:00 UTC) on the project's 2-core AMD EPYC VM (AVX-512F), load
-//! average 1.3–1.7 from another helper's work, two runs interleaved with main's binary (1ab8d80)
-//! and `python3 examples/accumulate_numpy.py` (`cargo bench -p fringe-benches --bench cpu_rates
-//! -- accumulate`, 1 M contributions, 16 k points, 4 groups), M contributions/s wall:
+//! Measured 29 November 2026 on the project's 2-core Intel Xeon VM (AVX-512F), two runs
+//! interleaved with the previous kernel's bench binary (a5a4ef5) and `python3
+//! examples/accumulate_numpy.py` (`cargo bench -p fringe-benches --bench cpu_rates --
+//! accumulate`, 1 M contributions, 16 k points, 4 groups), M contributions/s wall, on the idle
+//! VM (15:05 UTC) and, in brackets, while another build ran (15:00 UTC, load 1.3–1.7):
 //!
 //! | | before (AVX2, no prefetch) | AVX-512F + prefetch | AVX2 + prefetch |
 //! |---|---|---|---|
-//! | 1 thread plain | 85–88 | 122–131 | 117–121 |
-//! | 2 threads plain | 147–230 | 280–287 | |
-//! | 1 thread compensated | 80–81 | 99–118 | 93–107 |
-//! | 2 threads compensated | 154–186 | 253–259 | |
+//! | 1 thread plain | 74–83 (85–88) | 116–128 (122–131) | 95–109 (117–121) |
+//! | 2 threads plain | 127–134 (147–230) | 200–275 (280–287) | |
+//! | 1 thread compensated | 66–77 (80–81) | 110 (99–118) | 96–100 (93–107) |
+//! | 2 threads compensated | 116–150 (154–186) | 170–189 (253–259) | |
 //!
-//! numpy `bincount` of the same work in the same series: 12.4–12.9 M/s, so 2 threads plain is
-//! 22–23× numpy. Most of the gain is the field prefetch (without it the AVX-512F kernel ran at
-//! 64–70 M/s on 1 thread); the 8-lane phasors and field update add 5–10 % over AVX2 + prefetch.
-//! Loading and storing a group's sum as its whole 64-byte line instead of masked 6-lane moves
-//! took 1 thread compensated from 89 to 122 M/s (a masked store does not forward to the next
-//! load of the same group). A bare streaming read of the same 64 MiB ran at 154–250 M/s on 1
-//! thread and 652–677 on 2 in the same series.
+//! numpy `bincount` of the same work in the same series: 11.9–12.5 (12.4–12.9) M/s, so 2
+//! threads plain is 16–22× (22–23×) numpy. Most of the gain is the field prefetch (without it
+//! the AVX-512F kernel ran at 64–70 M/s on 1 thread); the 8-lane phasors and field update add
+//! 5–20 % over AVX2 + prefetch. Loading and storing a group's sum as its whole 64-byte line
+//! instead of masked 6-lane moves took 1 thread compensated from 89 to 122 M/s (a masked store
+//! does not forward to the next load of the same group). A bare streaming read of the same
+//! 64 MiB ran at 443–476 M/s on 2 threads in the idle series.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
