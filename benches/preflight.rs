@@ -53,22 +53,13 @@ fn read(name: &str) -> (PathBuf, Value) {
     (file, serde_json::from_str(&text).expect("case JSON"))
 }
 
-/// plate_two_beam_paper with `k` plates, each 1 mm below the one above (as the test
-/// `input_classes::stacked_plates_are_counted_and_refused_before_work` builds them).
+#[path = "../tests/suite/support/stacked_plates.rs"]
+mod stacked_plates;
+
+/// plate_two_beam_paper with `k` plates, each 1 mm below the one above (as the tests build
+/// them).
 fn stacked(k: usize) -> Value {
-    let (_, v) = read("plate_two_beam_paper");
-    let mut doc = v.clone();
-    let plate = doc["scene"]["surfaces"][0].clone();
-    for j in 1..k {
-        let mut p = plate.clone();
-        p["plate"]["name"] = json!(format!("plate{j}"));
-        p["plate"]["top_point_m"] = json!([0.0, 0.0, -0.001 * j as f64]);
-        doc["scene"]["surfaces"]
-            .as_array_mut()
-            .unwrap()
-            .insert(j, p);
-    }
-    doc
+    stacked_plates::stacked_plates(&read("plate_two_beam_paper").1, k)
 }
 
 fn scenes() -> Vec<(String, PathBuf, Value)> {

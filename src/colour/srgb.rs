@@ -134,7 +134,12 @@ pub fn to_srgb8(linear_srgb: [f64; 3]) -> [u8; 3] {
 /// The reference 8-bit conversion: round(255 · [`srgb_encode`]\(L)) per channel, a `powf` each
 /// (`NaN as u8` is 0). [`to_srgb8`] gives the same bytes from a table.
 pub fn to_srgb8_powf(linear_srgb: [f64; 3]) -> [u8; 3] {
-    linear_srgb.map(|l| (255.0 * srgb_encode(l)).round() as u8)
+    linear_srgb.map(code_powf)
+}
+
+/// One channel of [`to_srgb8_powf`].
+fn code_powf(l: f64) -> u8 {
+    (255.0 * srgb_encode(l)).round() as u8
 }
 
 /// The 255 thresholds of the 8-bit code, increasing: entry k − 1 is the smallest f64 L in
@@ -144,14 +149,13 @@ pub fn to_srgb8_powf(linear_srgb: [f64; 3]) -> [u8; 3] {
 pub fn srgb8_thresholds() -> &'static [f64; 255] {
     static THRESHOLDS: std::sync::OnceLock<[f64; 255]> = std::sync::OnceLock::new();
     THRESHOLDS.get_or_init(|| {
-        let code = |l: f64| (255.0 * srgb_encode(l)).round() as u8;
         std::array::from_fn(|i| {
             let k = i as u8 + 1;
             // code(lo) < k ≤ code(hi): code(0) = 0, code(1) = 255.
             let (mut lo, mut hi) = (0.0f64.to_bits(), 1.0f64.to_bits());
             while hi - lo > 1 {
                 let mid = lo + (hi - lo) / 2;
-                if code(f64::from_bits(mid)) >= k {
+                if code_powf(f64::from_bits(mid)) >= k {
                     hi = mid;
                 } else {
                     lo = mid;

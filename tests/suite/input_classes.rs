@@ -261,18 +261,11 @@ fn stacked_plates_are_counted_and_refused_before_work() {
         .find(|(f, _)| f.ends_with("plate_two_beam_paper.json"))
         .unwrap();
     let stacked = |k: usize| {
-        let mut doc = v.clone();
-        let plate = doc["scene"]["surfaces"][0].clone();
-        for j in 1..k {
-            let mut p = plate.clone();
-            p["plate"]["name"] = json!(format!("plate{j}"));
-            p["plate"]["top_point_m"] = json!([0.0, 0.0, -0.001 * j as f64]);
-            doc["scene"]["surfaces"]
-                .as_array_mut()
-                .unwrap()
-                .insert(j, p);
-        }
-        parse(&file, &doc).expect("stacked plates parse")
+        parse(
+            &file,
+            &crate::support::stacked_plates::stacked_plates(&v, k),
+        )
+        .expect("stacked plates parse")
     };
     let mut last = 0.0;
     for k in 1..=3 {

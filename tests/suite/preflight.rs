@@ -4,6 +4,7 @@
 //! the measured CPU-seconds below are a record of `benches/preflight.rs` on the project's
 //! machine, and the tests assert that the deterministic estimate still lands within 2× of them.
 
+use crate::support::stacked_plates::stacked_plates;
 use fringe::harness::case::load::{self, Case};
 use fringe::harness::case::run::{
     self, FURTHER_SAMPLE_UNITS, MOVED_TRACE, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, WorkEstimate,
@@ -24,20 +25,11 @@ fn case(name: &str, edit: &dyn Fn(&mut Value)) -> Case {
     load::parse(&path, &doc.to_string()).expect("valid case")
 }
 
-/// plate_two_beam_paper with `k` plates, each 1 mm below the one above (the scenes of
-/// `benches/preflight.rs` and of `input_classes::stacked_plates_are_counted_and_refused_before_work`).
+/// plate_two_beam_paper with `k` plates ([`stacked_plates`], the scenes of
+/// `benches/preflight.rs`), then `edit`.
 fn stacked(k: usize, edit: &dyn Fn(&mut Value)) -> Case {
     case("plate_two_beam_paper", &|doc| {
-        let plate = doc["scene"]["surfaces"][0].clone();
-        for j in 1..k {
-            let mut p = plate.clone();
-            p["plate"]["name"] = json!(format!("plate{j}"));
-            p["plate"]["top_point_m"] = json!([0.0, 0.0, -0.001 * j as f64]);
-            doc["scene"]["surfaces"]
-                .as_array_mut()
-                .unwrap()
-                .insert(j, p);
-        }
+        *doc = stacked_plates(doc, k);
         edit(doc);
     })
 }

@@ -4,6 +4,7 @@ pub mod airy_plate;
 pub mod draw;
 pub mod library;
 pub mod schema;
+pub mod stacked_plates;
 
 use fringe::harness::fuzz::{self, Family, Verdict};
 use std::collections::BTreeMap;
