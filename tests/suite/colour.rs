@@ -659,7 +659,7 @@ fn newton_sequences_under_several_lights_are_each_lights_own_sequence() {
         assert_eq!(&alone, rows);
     }
     // Bad input is refused as by `newton_sequence`.
-    assert!(newton_sequences(N_SOAP, &[-1.0 * NM], &grid, &lights).is_err());
+    assert!(newton_sequences(N_SOAP, &[-NM], &grid, &lights).is_err());
     assert!(newton_sequences(f64::NAN, &thicknesses_m, &grid, &lights).is_err());
 }
 
