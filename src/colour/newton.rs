@@ -76,29 +76,66 @@ pub fn newton_sequence(
     illuminant: Illuminant,
     adaptation: Adaptation,
 ) -> Result<Vec<NewtonRow>, String> {
+    let mut rows = newton_sequences(n_film, thicknesses_m, grid, &[(illuminant, adaptation)])?;
+    Ok(rows.pop().unwrap_or_default())
+}
+
+/// [`newton_sequence`] under several (illuminant, adaptation) pairs, one row list per pair in
+/// their order: each thickness's reflectance spectrum (which does not depend on the light) is
+/// evaluated once and integrated under every pair, so each list is bit for bit the one
+/// [`newton_sequence`] gives for its pair. Thicknesses run in parallel (rayon).
+///
+/// Errors: invalid `n_film`, thickness or grid.
+pub fn newton_sequences(
+    n_film: f64,
+    thicknesses_m: &[f64],
+    grid: &WavelengthGrid,
+    lights: &[(Illuminant, Adaptation)],
+) -> Result<Vec<Vec<NewtonRow>>, String> {
+    use rayon::prelude::*;
     for &d in thicknesses_m {
         validate_film(n_film, d)?;
     }
-    let integrator = SpectralIntegrator::new(grid, illuminant)?;
-    let mut spectrum = vec![0.0; integrator.len()];
-    let rows = thicknesses_m
+    grid.validate()?;
+    let integrators = lights
         .iter()
-        .map(|&thickness_m| {
-            for (r, &lambda) in spectrum.iter_mut().zip(integrator.lambdas_m()) {
-                *r = soap_film_reflectance(n_film, thickness_m, lambda);
-            }
-            let xyz = integrator.xyz(&spectrum);
-            let pixel = xyz_to_srgb8(xyz, illuminant, adaptation);
-            NewtonRow {
-                thickness_m,
-                xyz,
-                linear_srgb: pixel.linear_srgb,
-                srgb8: pixel.srgb8,
-                clip_excess: pixel.clip_excess,
-            }
+        .map(|&(illuminant, adaptation)| {
+            Ok((
+                SpectralIntegrator::new(grid, illuminant)?,
+                illuminant,
+                adaptation,
+            ))
         })
+        .collect::<Result<Vec<_>, String>>()?;
+    // Per thickness, the row under each light.
+    let per_thickness: Vec<Vec<NewtonRow>> = thicknesses_m
+        .par_iter()
+        .map_init(
+            || vec![0.0; grid.len()],
+            |spectrum, &thickness_m| {
+                for (r, &lambda) in spectrum.iter_mut().zip(&grid.lambdas_m) {
+                    *r = soap_film_reflectance(n_film, thickness_m, lambda);
+                }
+                integrators
+                    .iter()
+                    .map(|(integrator, illuminant, adaptation)| {
+                        let xyz = integrator.xyz(spectrum);
+                        let pixel = xyz_to_srgb8(xyz, *illuminant, *adaptation);
+                        NewtonRow {
+                            thickness_m,
+                            xyz,
+                            linear_srgb: pixel.linear_srgb,
+                            srgb8: pixel.srgb8,
+                            clip_excess: pixel.clip_excess,
+                        }
+                    })
+                    .collect()
+            },
+        )
         .collect();
-    Ok(rows)
+    Ok((0..lights.len())
+        .map(|k| per_thickness.iter().map(|rows| rows[k]).collect())
+        .collect())
 }
 
 /// [`newton_sequence`] as CSV text: one '#' comment line stating n, illuminant, adaptation and

@@ -497,12 +497,13 @@ fn newton_figures() -> Result<Part, String> {
     let thick = newton_thicknesses_m(1);
     let cie = WavelengthGrid::cie_1nm();
     let mut bands = Vec::new();
-    for (ill, adapt) in [
+    let lights = [
         (Illuminant::D65, Adaptation::None),
         (Illuminant::E, Adaptation::Bradford),
-    ] {
-        // The rows once, for the CSV and the strip.
-        let rows = colour::newton_sequence(NEWTON_N, &thick, &cie, ill, adapt)?;
+    ];
+    // The rows once, for the CSV and the strip; each thickness's spectrum once for both lights.
+    let sequences = colour::newton_sequences(NEWTON_N, &thick, &cie, &lights)?;
+    for ((ill, adapt), rows) in lights.into_iter().zip(sequences) {
         let csv = colour::newton_csv(&rows, NEWTON_N, &cie, ill, adapt);
         part.files
             .push((format!("newton_{}.csv", ill.name()), csv.into_bytes()));
@@ -557,13 +558,15 @@ pub fn fig8_text(left: &str, right: &str, s: &DiffStats) -> String {
 pub fn colour_error_study(opts: &FigureOptions) -> Result<Vec<ColourErrorRow>, String> {
     let reference = WavelengthGrid::cie_1nm();
     let thick = newton_thicknesses_m(5);
-    let newton = |grid: &WavelengthGrid, ill: Illuminant| -> Result<Vec<[f64; 3]>, String> {
-        Ok(
-            colour::newton_sequence(NEWTON_N, &thick, grid, ill, ill.default_adaptation())?
-                .iter()
-                .map(|r| r.xyz)
-                .collect(),
-        )
+    // XYZ of the Newton sequence under D65 and E (each thickness's spectrum once for both).
+    let newton = |grid: &WavelengthGrid| -> Result<[Vec<[f64; 3]>; 2], String> {
+        let lights = [Illuminant::D65, Illuminant::E].map(|ill| (ill, ill.default_adaptation()));
+        let [d65, e] = <[Vec<colour::NewtonRow>; 2]>::try_from(colour::newton_sequences(
+            NEWTON_N, &thick, grid, &lights,
+        )?)
+        .map_err(|_| "newton_sequences: one row list per light".to_string())?;
+        let xyz = |rows: Vec<colour::NewtonRow>| rows.iter().map(|r| r.xyz).collect();
+        Ok([xyz(d65), xyz(e)])
     };
     let plate = plate_case()?;
     let screen = Screen::from_probe(&plate.spec.probe, Some((opts.error_size, opts.error_size)))?;
@@ -589,12 +592,8 @@ pub fn colour_error_study(opts: &FigureOptions) -> Result<Vec<ColourErrorRow>, S
         .par_iter()
         .map(|grid| {
             let (p, secs) = plate_xyz(grid)?;
-            Ok((
-                newton(grid, Illuminant::D65)?,
-                newton(grid, Illuminant::E)?,
-                p,
-                secs,
-            ))
+            let [d65, e] = newton(grid)?;
+            Ok((d65, e, p, secs))
         })
         .collect::<Result<_, String>>()?;
     let (ref_d65, ref_e, ref_plate, _) = &computed[0];

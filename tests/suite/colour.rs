@@ -3,9 +3,9 @@
 
 use fringe::colour::{
     Adaptation, Cmf, Illuminant, SpectralIntegrator, WHITE_D65, WavelengthGrid, bradford_adapt,
-    delta_e_2000, illuminant_spd, newton_sequence, soap_film_reflectance, srgb_decode, srgb_encode,
-    to_srgb8, wavelength_to_srgb_hue, write_newton_csv, xyz_to_lab, xyz_to_linear_srgb,
-    xyz_to_srgb8,
+    delta_e_2000, illuminant_spd, newton_sequence, newton_sequences, soap_film_reflectance,
+    srgb_decode, srgb_encode, to_srgb8, wavelength_to_srgb_hue, write_newton_csv, xyz_to_lab,
+    xyz_to_linear_srgb, xyz_to_srgb8,
 };
 use proptest::prelude::*;
 
@@ -621,6 +621,46 @@ fn newton_d65(thicknesses_nm: &[f64]) -> Vec<fringe::colour::NewtonRow> {
         Adaptation::None,
     )
     .unwrap()
+}
+
+/// `newton_sequences` evaluates each thickness's spectrum once for several lights: every list
+/// is bit for bit the definition (R(λ) of the film on the grid, integrated under that light,
+/// shown with its adaptation) for its own light, in the order given, and one light alone gives
+/// what `newton_sequence` gives.
+#[test]
+fn newton_sequences_under_several_lights_are_each_lights_own_sequence() {
+    let thicknesses_m: Vec<f64> = (0..40).map(|k| 17.0 * k as f64 * NM).collect();
+    let grid = WavelengthGrid::uniform(380.0 * NM, 780.0 * NM, 81).unwrap();
+    let lights = [
+        (Illuminant::E, Adaptation::Bradford),
+        (Illuminant::D65, Adaptation::None),
+        (Illuminant::D65, Adaptation::Bradford),
+    ];
+    let all = newton_sequences(N_SOAP, &thicknesses_m, &grid, &lights).unwrap();
+    assert_eq!(all.len(), lights.len());
+    for (rows, &(ill, adapt)) in all.iter().zip(&lights) {
+        let integrator = SpectralIntegrator::new(&grid, ill).unwrap();
+        assert_eq!(rows.len(), thicknesses_m.len());
+        for (row, &d) in rows.iter().zip(&thicknesses_m) {
+            let spectrum: Vec<f64> = grid
+                .lambdas_m
+                .iter()
+                .map(|&l| soap_film_reflectance(N_SOAP, d, l))
+                .collect();
+            let xyz = integrator.xyz(&spectrum);
+            let pixel = xyz_to_srgb8(xyz, ill, adapt);
+            assert_eq!(row.thickness_m, d);
+            assert_eq!(row.xyz, xyz, "{} at {d:e} m", ill.name());
+            assert_eq!(row.linear_srgb, pixel.linear_srgb);
+            assert_eq!(row.srgb8, pixel.srgb8);
+            assert_eq!(row.clip_excess, pixel.clip_excess);
+        }
+        let alone = newton_sequence(N_SOAP, &thicknesses_m, &grid, ill, adapt).unwrap();
+        assert_eq!(&alone, rows);
+    }
+    // Bad input is refused as by `newton_sequence`.
+    assert!(newton_sequences(N_SOAP, &[-NM], &grid, &lights).is_err());
+    assert!(newton_sequences(f64::NAN, &thicknesses_m, &grid, &lights).is_err());
 }
 
 #[test]

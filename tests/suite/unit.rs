@@ -108,6 +108,130 @@ mod double_double {
         assert_eq!(d.hi + d.lo, 0.1 - b);
     }
 
+    /// x = m·2^e exactly, m an odd integer of at most 53 bits (m = 0 for 0); finite x only.
+    fn integer_and_exponent(x: f64) -> (i128, i32) {
+        let bits = x.to_bits();
+        let sign = if bits >> 63 == 1 { -1 } else { 1 };
+        let biased = ((bits >> 52) & 0x7ff) as i32;
+        let frac = (bits & ((1u64 << 52) - 1)) as i128;
+        let (m, e) = if biased == 0 {
+            (frac, -1074)
+        } else {
+            (frac | (1 << 52), biased - 1075)
+        };
+        if m == 0 {
+            return (0, 0);
+        }
+        let tz = m.trailing_zeros();
+        (sign * (m >> tz), e + tz as i32)
+    }
+
+    /// Whether hi + lo = a·b exactly (a, b ≠ 0), in integer arithmetic (no floating point):
+    /// every term is an integer times a power of two, brought to the exponent of a·b's last bit
+    /// (hi and lo, if they sum to a·b, are multiples of it).
+    fn sums_exactly_to_the_product(a: f64, b: f64, hi: f64, lo: f64) -> bool {
+        let ((ma, ea), (mb, eb)) = (integer_and_exponent(a), integer_and_exponent(b));
+        let e0 = ea + eb;
+        let at = |x: f64| {
+            let (m, e) = integer_and_exponent(x);
+            if m == 0 {
+                return Some(0);
+            }
+            let shift = u32::try_from(e - e0).ok().filter(|&s| s < 120)?;
+            let v = m << shift;
+            (v >> shift == m).then_some(v)
+        };
+        match (at(hi), at(lo)) {
+            (Some(h), Some(l)) => ma * mb == h + l,
+            _ => false,
+        }
+    }
+
+    /// `two_prod` returns the exact rounding error of the product (hi + lo = a·b), checked in
+    /// integer arithmetic on adversarial factors (all-ones significands, which make the largest
+    /// errors; powers of two; 26- and 27-bit significands, where a Veltkamp split would cut;
+    /// extreme and subnormal magnitudes; signs)
+    /// and on pseudo-random ones over the whole exponent range; and non-finite products keep
+    /// IEEE's answers.
+    #[test]
+    fn two_prod_is_the_exact_error_of_the_product() {
+        let ones = 2.0 - f64::EPSILON; // 1.11…1 (53 ones)
+        let mut special = vec![
+            1.0,
+            ones,
+            1.0 + f64::EPSILON,
+            1.0 + 2f64.powi(-26),
+            1.0 + 2f64.powi(-27),
+            1.0 - 2f64.powi(-27),
+            (1u64 << 26) as f64 - 1.0,
+            ((1u64 << 27) - 1) as f64,
+            134_217_729.0,
+            0.1,
+            1.0 / 3.0,
+            std::f64::consts::PI,
+            2f64.powi(450),
+            2f64.powi(450) * ones,
+            2f64.powi(-450),
+            2f64.powi(-450) * ones,
+            2f64.powi(451),
+            2f64.powi(-451) * ones,
+            1e300,
+            1e-300,
+            f64::MIN_POSITIVE,
+            5e-324,
+            0.0,
+        ];
+        special.extend(special.clone().iter().map(|x| -x));
+        let mut factors = special.clone();
+        // SplitMix64: significands and exponents over the whole finite range.
+        let mut state = 0x9e37_79b9_7f4a_7c15u64;
+        let mut next = || {
+            state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+            let mut z = state;
+            z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+            z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+            z ^ (z >> 31)
+        };
+        for _ in 0..4000 {
+            let r = next();
+            let exponent = match r % 3 {
+                0 => 1023 - 40 + (r >> 8) % 80, // near 1, where paths and indices are
+                1 => 1023 - 470 + (r >> 8) % 940, // within 2^±470
+                _ => 1 + (r >> 8) % 2046,       // anywhere
+            };
+            let significand = next() & ((1 << 52) - 1);
+            factors.push(f64::from_bits(
+                ((r >> 40) & 1) << 63 | exponent << 52 | significand,
+            ));
+        }
+        let mut checked = 0;
+        for (i, &a) in factors.iter().enumerate() {
+            // Every pair of the special values, and each factor with its neighbours and with
+            // every special value.
+            let partners = special.iter().chain(factors[i..].iter().take(8));
+            for &b in partners {
+                let p = two_prod(a, b);
+                // Where the error is representable (the product neither overflows nor leaves
+                // bits below the subnormal range), hi + lo is a·b exactly.
+                let e = (a.abs().log2() + b.abs().log2()).floor();
+                if a != 0.0 && b != 0.0 && (-960.0..1000.0).contains(&e) {
+                    assert!(
+                        sums_exactly_to_the_product(a, b, p.hi, p.lo),
+                        "two_prod({a:e}, {b:e}) = {p:?} is not the exact product"
+                    );
+                    checked += 1;
+                }
+            }
+        }
+        assert!(checked > 20_000, "only {checked} exact checks");
+        // An infinite or NaN product is the product, and its error term is not finite.
+        for (a, b) in [(f64::INFINITY, 2.0), (f64::NAN, 1.0), (1e300, 1e300)] {
+            let p = two_prod(a, b);
+            assert_eq!(p.hi.to_bits(), (a * b).to_bits());
+            assert!(!p.lo.is_finite(), "two_prod({a:e}, {b:e}) = {p:?}");
+        }
+    }
+
     #[test]
     fn sum_of_a_large_and_a_small_path_keeps_both() {
         // 100 m + 1 pm − 100 m = 1 pm (f64 alone keeps 1.4e-14 m steps at 100 m).
