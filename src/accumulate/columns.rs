@@ -11,9 +11,11 @@
 //! The SIMD kernels ([`ColumnKernel`], picked at run time: AVX-512F if the CPU has it, else
 //! AVX2, else the portable loop through [`Accumulator::add_parts`]) compute a block's phasors
 //! in one vector loop (8 lanes with AVX-512F, 4 with AVX2; the bits of [`phasor_from_cycles`]),
-//! find the group of a contribution by one 4-lane compare against the ids of the first four
-//! groups of the point (the hash table of `mod.rs` only for a fifth and later group, or a new
-//! one), and form `E·e^{i2πc}` and the TwoSum update with the operations and the operand order
+//! find the group of a contribution by a compare against the ids of the first four groups of
+//! the point (the AVX2 kernel one 4-lane compare per contribution; the AVX-512F kernel, before
+//! the sums, four 8-lane compares per eight contributions that give the byte offset of each
+//! one's group sum; `GroupTable::group` of `mod.rs`, lane by lane, only for id 0, a new id or
+//! a fifth and later group), and form `E·e^{i2πc}` and the TwoSum update with the operations and the operand order
 //! of `GroupTable::add_field` (no FMA, no reassociation): in a 4-lane (x, y) and a 2-lane (z)
 //! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
 //! compensation term and intensity has the bits of [`Accumulator::add`], whichever kernel runs
@@ -130,12 +132,14 @@ impl From<&[Contribution]> for ContributionColumns {
     }
 }
 
-/// Cosines and sines of one block of phasors, each row on its own cache lines.
+/// Cosines and sines of one block of phasors, each row on its own cache lines, and the
+/// byte offset of each contribution's group sum (AVX-512F kernel; [`INCOHERENT_OFFSET`] for id 0).
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
 pub(super) struct TrigBlock {
     cos: [f64; BLOCK],
     sin: [f64; BLOCK],
+    offset: [u64; BLOCK],
 }
 
 impl Default for TrigBlock {
@@ -143,9 +147,16 @@ impl Default for TrigBlock {
         TrigBlock {
             cos: [0.0; BLOCK],
             sin: [0.0; BLOCK],
+            offset: [0; BLOCK],
         }
     }
 }
+
+/// The group-offset marker of an id-0 (incoherent) contribution in [`TrigBlock::offset`].
+const INCOHERENT_OFFSET: u64 = u64::MAX;
+
+/// Bytes from one group sum to the next in `GroupTable::sums`.
+const SUM_BYTES: u64 = std::mem::size_of::<GroupSum>() as u64;
 
 /// The code that adds columns. Every kernel gives the same bits ([`Accumulator::add`]'s).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -328,6 +339,15 @@ impl Accumulator {
                 prefetch(cycles.as_ptr().wrapping_add(start + 2 * BLOCK + k));
                 prefetch(ids.as_ptr().wrapping_add(start + 2 * BLOCK + k));
             }
+            if W512 {
+                // SAFETY: the caller has AVX2 and AVX-512F (`columns_avx512`).
+                unsafe {
+                    group_offsets_512(table, idb, &mut trig.offset);
+                    add_block_512::<COMP>(table, incoherent, trig, fb);
+                }
+                start += len;
+                continue;
+            }
             // Grouped sums.
             // SAFETY (loads below): `first` is a `[u64; 4]` (32 bytes, unaligned load).
             let mut first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
@@ -355,16 +375,99 @@ impl Accumulator {
                     first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
                     g
                 };
-                // SAFETY: the caller has AVX2, and AVX-512F when `W512` (`columns_avx512`).
-                unsafe {
-                    if W512 {
-                        add_one_512::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j])
-                    } else {
-                        add_one_256::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j])
-                    }
-                }
+                // SAFETY: the caller has AVX2 (`columns_avx2`, `columns_avx512`).
+                unsafe { add_one_256::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j]) }
             }
             start += len;
+        }
+    }
+}
+
+/// The group of every contribution of a block, as the byte offset of its sum in `table.sums`
+/// (`g · size_of::<GroupSum>()`, or [`INCOHERENT_OFFSET`] for id 0), groups created in order of
+/// first appearance exactly as `GroupTable::group` one contribution at a time would. Eight ids
+/// at a time: one 8-lane compare against each of the first four groups' ids gives the offsets
+/// of a chunk whose ids all belong to those groups (the common case, about one vector
+/// instruction per contribution); a chunk with id 0, a new id or a fifth or later group goes
+/// through `GroupTable::group` lane by lane, in order.
+///
+/// # Safety
+/// The CPU must have AVX2 and AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn group_offsets_512(table: &mut super::GroupTable, ids: &[u64], offset: &mut [u64; BLOCK]) {
+    use std::arch::x86_64::*;
+    let lane_by_lane = |table: &mut super::GroupTable, r: std::ops::Range<usize>, o: &mut [u64]| {
+        for (o, &id) in o[r.clone()].iter_mut().zip(&ids[r]) {
+            *o = if id == INCOHERENT {
+                INCOHERENT_OFFSET
+            } else {
+                SUM_BYTES * table.group(id) as u64
+            };
+        }
+    };
+    let mut j = 0;
+    // SAFETY: AVX-512F is the caller's promise; `ids[j..j + 8]` is in bounds (loop condition)
+    // and `offset[j..j + 8]` too (`ids.len() ≤ BLOCK`), both unaligned 64-byte moves.
+    unsafe {
+        let zero = _mm512_setzero_si512();
+        while j + 8 <= ids.len() {
+            let id = _mm512_loadu_si512(ids.as_ptr().add(j).cast());
+            // `first` holds 0 for a group not created yet: lanes with id 0 are excluded from
+            // the fast case, so a match is always a group that exists.
+            let f = table.first;
+            let k0 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[0] as i64));
+            let k1 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[1] as i64));
+            let k2 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[2] as i64));
+            let k3 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[3] as i64));
+            let kz = _mm512_cmpeq_epi64_mask(id, zero);
+            if (k0 | k1 | k2 | k3) & !kz == 0xFF {
+                let b = SUM_BYTES as i64;
+                let mut o = _mm512_maskz_mov_epi64(k1, _mm512_set1_epi64(b));
+                o = _mm512_mask_mov_epi64(o, k2, _mm512_set1_epi64(2 * b));
+                o = _mm512_mask_mov_epi64(o, k3, _mm512_set1_epi64(3 * b));
+                _mm512_storeu_si512(offset.as_mut_ptr().add(j).cast(), o);
+            } else {
+                lane_by_lane(table, j..j + 8, offset);
+            }
+            j += 8;
+        }
+    }
+    lane_by_lane(table, j..ids.len(), offset);
+}
+
+/// Adds a block whose group offsets [`group_offsets_512`] has found (`trig.offset`) and whose
+/// phasors are in `trig.cos`, `trig.sin`: each contribution through [`add_one_512`] into its
+/// group's sum, or its |E|² into the incoherent sum, in order; the fields a block ahead asked
+/// for by prefetch hints.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `trig.offset[..fields.len()]` must be offsets of groups that
+/// exist in `table.sums` (or [`INCOHERENT_OFFSET`]), as [`group_offsets_512`] writes them.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn add_block_512<const COMP: bool>(
+    table: &mut super::GroupTable,
+    incoherent: &mut super::CompSum,
+    trig: &TrigBlock,
+    fields: &[Field3],
+) {
+    let base = table.sums.as_mut_ptr().cast::<u8>();
+    for (j, field) in fields.iter().enumerate() {
+        // The field a block ahead (48 bytes apart: every cache line is asked for).
+        prefetch(std::ptr::from_ref(field).wrapping_add(BLOCK));
+        let off = trig.offset[j];
+        if off == INCOHERENT_OFFSET {
+            let e2 = field[0].norm_sqr() + field[1].norm_sqr() + field[2].norm_sqr();
+            incoherent.add(e2, COMP);
+            continue;
+        }
+        // SAFETY: `off` is `g · size_of::<GroupSum>()` for a group `g < table.sums.len()`
+        // (the caller's promise), so `base + off` is that group's sum, aligned, and nothing
+        // else refers to it during the call; AVX-512F: the caller's promise.
+        unsafe {
+            let sum = &mut *base.add(off as usize).cast::<GroupSum>();
+            add_one_512::<COMP>(sum, field, trig.cos[j], trig.sin[j]);
         }
     }
 }
