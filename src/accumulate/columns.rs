@@ -15,8 +15,9 @@
 //! the point (the AVX2 kernel one 4-lane compare per contribution; the AVX-512F kernel, before
 //! the sums, four 8-lane compares per eight contributions that give the byte offset of each
 //! one's group sum; `GroupTable::group` of `mod.rs`, lane by lane, only for id 0, a new id or
-//! a fifth and later group), and form `E·e^{i2πc}` and the TwoSum update with the operations and the operand order
-//! of `GroupTable::add_field` (no FMA, no reassociation): in a 4-lane (x, y) and a 2-lane (z)
+//! a fifth and later group), and form `E·e^{i2πc}` and the TwoSum update with the operations
+//! and the operand order of `GroupTable::add_field` (no FMA, no reassociation), each group's
+//! contributions in input order: in a 4-lane (x, y) and a 2-lane (z)
 //! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
 //! compensation term and intensity has the bits of [`Accumulator::add`], whichever kernel runs
 //! (`tests/suite/accumulate.rs` checks each kernel the CPU has through
@@ -46,6 +47,31 @@
 //! instead of masked 6-lane moves took 1 thread compensated from 89 to 122 M/s (a masked store
 //! does not forward to the next load of the same group). A bare streaming read of the same
 //! 64 MiB ran at 443–476 M/s on 2 threads in the idle series.
+//!
+//! Group offsets before the sums (the AVX-512F kernel's four 8-lane compares instead of a
+//! broadcast, compare, mask move and bit scan per contribution; the first four groups of a
+//! point no longer hashed): six runs each of the bench binary before (32aa42f) and after,
+//! interleaved, 29 November 2026 16:13–16:15 UTC, on the VM loaded by three other helpers'
+//! builds (load 5.1–5.6), M contributions/s wall, best (median) of the six:
+//!
+//! | | before | after |
+//! |---|---|---|
+//! | 16 k contributions, L2-resident, 1 thread plain | 139 (106) | 218 (142) |
+//! | 16 k contributions, L2-resident, 1 thread compensated | 132 (104) | 169 (110) |
+//! | 1 M contributions, 1 thread plain | 118 (81) | 117 (106) |
+//! | 1 M contributions, 2 threads plain | 282 (94) | 145 (104) |
+//! | 1 M contributions, 1 thread compensated | 97 (78) | 86 (69) |
+//! | 1 M contributions, 2 threads compensated | 113 (79) | 116 (76) |
+//!
+//! The L2-resident rows (`accumulate T16k_P256_G4 … (L2)` of the same bench) are the compute
+//! rate: +57 % plain, +28 % compensated. The 1 M rows were bound by the memory bandwidth the
+//! other processes left: the bare streaming read of the 64 MiB ran at 91–124 M/s on 2 threads
+//! (median; best 308–315) in the same series, against 443–476 on the idle VM, so they do not
+//! show the change, and whether 2 threads plain reach 25× numpy (≥ ~310 M/s) on the idle VM
+//! was not measured. In a throw-away L2-resident microbenchmark of the kernel alone the phasor
+//! loop took ~45 % of the time and the group search and sums ~55 % before this change, about
+//! half each after it: the phasor polynomial (its operations fixed by the bit contract, no
+//! FMA) is now as large a part as everything else.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
