@@ -311,7 +311,8 @@ impl GroupTable {
         if let Some(g) = self.first.iter().position(|&f| f == id) {
             return g;
         }
-        if !self.table.is_empty() {
+        // The hash table holds groups only once there are more than four.
+        if self.ids.len() > self.first.len() {
             let mask = self.table.len() - 1;
             let mut h = self.home(id);
             loop {
@@ -329,24 +330,35 @@ impl GroupTable {
     }
 
     /// A new group for `id`: one of the first four (its id in `first`), or a hash slot.
-    #[inline(never)]
+    #[inline(always)]
     fn insert(&mut self, id: u64) -> usize {
         let g = self.ids.len();
-        if let Some(f) = self.first.get_mut(g) {
-            *f = id;
-        } else {
-            let hashed = g - self.first.len() + 1;
-            if 2 * hashed > self.table.len() {
-                self.grow();
+        match self.first.get_mut(g) {
+            Some(f) => {
+                *f = id;
+                self.ids.push(id);
+                self.sums.push(GroupSum::default());
+                g
             }
-            let mask = self.table.len() - 1;
-            let mut h = self.home(id);
-            while self.table[h].id != 0 {
-                h = (h + 1) & mask;
-            }
-            self.table[h] = Slot { id, group: g };
-            self.slot_of.push(h);
+            None => self.insert_hashed(id),
         }
+    }
+
+    /// A new group for `id` in a hash slot (the fifth and later groups).
+    #[inline(never)]
+    fn insert_hashed(&mut self, id: u64) -> usize {
+        let g = self.ids.len();
+        let hashed = g - self.first.len() + 1;
+        if 2 * hashed > self.table.len() {
+            self.grow();
+        }
+        let mask = self.table.len() - 1;
+        let mut h = self.home(id);
+        while self.table[h].id != 0 {
+            h = (h + 1) & mask;
+        }
+        self.table[h] = Slot { id, group: g };
+        self.slot_of.push(h);
         self.ids.push(id);
         self.sums.push(GroupSum::default());
         g
