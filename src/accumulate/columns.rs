@@ -50,28 +50,36 @@
 //!
 //! Group offsets before the sums (the AVX-512F kernel's four 8-lane compares instead of a
 //! broadcast, compare, mask move and bit scan per contribution; the first four groups of a
-//! point no longer hashed): six runs each of the bench binary before (32aa42f) and after,
-//! interleaved, 29 November 2026 16:13–16:15 UTC, on the VM loaded by three other helpers'
-//! builds (load 5.1–5.6), M contributions/s wall, best (median) of the six:
+//! point not hashed): the bench binary before (32aa42f) and after, interleaved, six runs each,
+//! 29 November 2026, on the VM shared with three other helpers' builds: M contributions/s
+//! wall, best (median) of the six, at 16:28–16:29 UTC (load 2.7–3.2) and, in brackets, at
+//! 16:13–16:15 UTC (load 5.1–5.6):
 //!
 //! | | before | after |
 //! |---|---|---|
-//! | 16 k contributions, L2-resident, 1 thread plain | 139 (106) | 218 (142) |
-//! | 16 k contributions, L2-resident, 1 thread compensated | 132 (104) | 169 (110) |
-//! | 1 M contributions, 1 thread plain | 118 (81) | 117 (106) |
-//! | 1 M contributions, 2 threads plain | 282 (94) | 145 (104) |
-//! | 1 M contributions, 1 thread compensated | 97 (78) | 86 (69) |
-//! | 1 M contributions, 2 threads compensated | 113 (79) | 116 (76) |
+//! | 16 k, L2-resident, 1 thread plain | 161 (154) [139 (106)] | 215 (211) [218 (142)] |
+//! | 16 k, L2-resident, 1 thread compensated | 131 (124) [132 (104)] | 166 (161) [169 (110)] |
+//! | 1 M, 1 thread plain | 133 (127) [118 (81)] | 140 (98) [117 (106)] |
+//! | 1 M, 2 threads plain | 146 (134) [282 (94)] | 124 (116) [145 (104)] |
+//! | 1 M, 1 thread compensated | 120 (115) [97 (78)] | 123 (117) [86 (69)] |
+//! | 1 M, 2 threads compensated | 123 (116) [113 (79)] | 126 (125) [116 (76)] |
 //!
-//! The L2-resident rows (`accumulate T16k_P256_G4 … (L2)` of the same bench) are the compute
-//! rate: +57 % plain, +28 % compensated. The 1 M rows were bound by the memory bandwidth the
-//! other processes left: the bare streaming read of the 64 MiB ran at 91–124 M/s on 2 threads
-//! (median; best 308–315) in the same series, against 443–476 on the idle VM, so they do not
-//! show the change, and whether 2 threads plain reach 25× numpy (≥ ~310 M/s) on the idle VM
-//! was not measured. In a throw-away L2-resident microbenchmark of the kernel alone the phasor
-//! loop took ~45 % of the time and the group search and sums ~55 % before this change, about
-//! half each after it: the phasor polynomial (its operations fixed by the bit contract, no
-//! FMA) is now as large a part as everything else.
+//! numpy `bincount` in the 16:28 series: 10.7–11.1 M/s. The L2-resident rows (`accumulate
+//! T16k_P256_G4 … (L2)` of the same bench) are the compute rate: +34–57 % plain, +27–28 %
+//! compensated. The 1 M rows do not show it: the 2-thread rates equal the 1-thread ones (the
+//! other CPU was busy with the other builds; CPU-seconds equal wall seconds), and the bare
+//! 2-thread streaming read of the 64 MiB ran at 200–321 M/s (median) against 443–476 on the
+//! idle VM, so the 64 MiB case was bound by what memory bandwidth and CPU the other processes
+//! left, and whether 2 threads plain reach 25× numpy (≥ ~310 M/s) on the idle VM was not
+//! measured. In a throw-away L2-resident microbenchmark of the kernel alone the phasor loop
+//! took ~45 % of the time and the group search and sums ~55 % before this change, about half
+//! each after it: the phasor polynomial (its operations fixed by the bit contract, no FMA) is
+//! now as large a part as everything else. Not kept, no measurable gain: the phasor loop
+//! without the `fast` select (216 vs 215 M/s L2-resident plain); in the microbenchmark,
+//! (−sin, sin) pairs written by the phasor loop and broadcast instead of the sign flip
+//! (slower), and group sums held in four registers with masked adds (no faster than the
+//! line-wide load/add/store); longer field prefetch distances and L2 prefetch hints gave no
+//! difference above the noise of the loaded VM.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
