@@ -64,6 +64,11 @@
 //! | 1 M, 1 thread compensated | 120 (115) [97 (78)] | 123 (117) [86 (69)] |
 //! | 1 M, 2 threads compensated | 123 (116) [113 (79)] | 126 (125) [116 (76)] |
 //!
+//! A third series (16:31–16:32 UTC, load 2.5–2.8), best (median), before → after: L2-resident
+//! plain 161 (130) → 184 (146), compensated 128 (122) → 122 (112); 1 M, 2 threads plain
+//! 272 (126) → 248 (201), compensated 202 (127) → 177 (160); the 2-thread streaming read
+//! 556 (304) and 564 (526): on this shared VM run-to-run noise is as large as the compensated
+//! gain, and only the plain L2-resident gain held in all three series.
 //! numpy `bincount` in the 16:28 series: 10.7–11.1 M/s. The L2-resident rows (`accumulate
 //! T16k_P256_G4 … (L2)` of the same bench) are the compute rate: +34–57 % plain, +27–28 %
 //! compensated. The 1 M rows do not show it: the 2-thread rates equal the 1-thread ones (the
