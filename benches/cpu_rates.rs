@@ -7,7 +7,7 @@
 //! Run (Linux only):
 //!
 //! ```text
-//! cargo bench -p fringe-benches --bench cpu_rates -- accumulate # 1 M contributions, 16 k points, 4 groups
+//! cargo bench -p fringe-benches --bench cpu_rates -- accumulate # 1 M contributions, 16 k points, 4 groups (and 16 k, L2-resident)
 //! cargo bench -p fringe-benches --bench cpu_rates -- spectrum # traced Airy spectrum, 401 λ
 //! ```
 //!
@@ -125,6 +125,27 @@ fn accumulate() {
             || {
                 pool.install(|| accumulate_columns_par(black_box(&cols), &offsets, s, &mut out));
                 black_box(&out);
+            },
+        );
+    }
+    // The same work L2-resident (16 k contributions, 256 points, 1 MiB of columns): the
+    // compute rate alone, which other processes' memory traffic on a shared machine does not
+    // change as much as the 64 MiB case above (same total: 20 · 2^20 contributions).
+    let (t2, p2) = (1usize << 14, 1usize << 8);
+    let (d2, offsets2) = data(t2, p2, g, 2);
+    let cols2 = ContributionColumns::from(&d2[..]);
+    let mut out2 = vec![0.0; p2];
+    for (name, s) in [
+        ("plain", Summation::Plain),
+        ("compensated", Summation::Compensated),
+    ] {
+        measure(
+            &format!("accumulate T16k_P256_G4 columns 1t {name} (L2)"),
+            20 * (t / t2),
+            t2,
+            || {
+                accumulate_columns(black_box(&cols2), &offsets2, s, &mut out2);
+                black_box(&out2);
             },
         );
     }

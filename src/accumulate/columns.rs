@@ -11,10 +11,13 @@
 //! The SIMD kernels ([`ColumnKernel`], picked at run time: AVX-512F if the CPU has it, else
 //! AVX2, else the portable loop through [`Accumulator::add_parts`]) compute a block's phasors
 //! in one vector loop (8 lanes with AVX-512F, 4 with AVX2; the bits of [`phasor_from_cycles`]),
-//! find the group of a contribution by one 4-lane compare against the ids of the first four
-//! groups of the point (the hash table of `mod.rs` only for a fifth and later group, or a new
-//! one), and form `E·e^{i2πc}` and the TwoSum update with the operations and the operand order
-//! of `GroupTable::add_field` (no FMA, no reassociation): in a 4-lane (x, y) and a 2-lane (z)
+//! find the group of a contribution by a compare against the ids of the first four groups of
+//! the point (the AVX2 kernel one 4-lane compare per contribution; the AVX-512F kernel, before
+//! the sums, four 8-lane compares per eight contributions that give the byte offset of each
+//! one's group sum; `GroupTable::group` of `mod.rs`, lane by lane, only for id 0, a new id or
+//! a fifth and later group), and form `E·e^{i2πc}` and the TwoSum update with the operations
+//! and the operand order of `GroupTable::add_field` (no FMA, no reassociation), each group's
+//! contributions in input order: in a 4-lane (x, y) and a 2-lane (z)
 //! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
 //! compensation term and intensity has the bits of [`Accumulator::add`], whichever kernel runs
 //! (`tests/suite/accumulate.rs` checks each kernel the CPU has through
@@ -44,6 +47,44 @@
 //! instead of masked 6-lane moves took 1 thread compensated from 89 to 122 M/s (a masked store
 //! does not forward to the next load of the same group). A bare streaming read of the same
 //! 64 MiB ran at 443–476 M/s on 2 threads in the idle series.
+//!
+//! Group offsets before the sums (the AVX-512F kernel's four 8-lane compares instead of a
+//! broadcast, compare, mask move and bit scan per contribution; the first four groups of a
+//! point not hashed): the bench binary before (32aa42f) and after, interleaved, six runs each,
+//! 29 November 2026, on the VM shared with three other helpers' builds: M contributions/s
+//! wall, best (median) of the six, at 16:28–16:29 UTC (load 2.7–3.2) and, in brackets, at
+//! 16:13–16:15 UTC (load 5.1–5.6):
+//!
+//! | | before | after |
+//! |---|---|---|
+//! | 16 k, L2-resident, 1 thread plain | 161 (154) [139 (106)] | 215 (211) [218 (142)] |
+//! | 16 k, L2-resident, 1 thread compensated | 131 (124) [132 (104)] | 166 (161) [169 (110)] |
+//! | 1 M, 1 thread plain | 133 (127) [118 (81)] | 140 (98) [117 (106)] |
+//! | 1 M, 2 threads plain | 146 (134) [282 (94)] | 124 (116) [145 (104)] |
+//! | 1 M, 1 thread compensated | 120 (115) [97 (78)] | 123 (117) [86 (69)] |
+//! | 1 M, 2 threads compensated | 123 (116) [113 (79)] | 126 (125) [116 (76)] |
+//!
+//! A third series (16:31–16:32 UTC, load 2.5–2.8), best (median), before → after: L2-resident
+//! plain 161 (130) → 184 (146), compensated 128 (122) → 122 (112); 1 M, 2 threads plain
+//! 272 (126) → 248 (201), compensated 202 (127) → 177 (160); the 2-thread streaming read
+//! 556 (304) and 564 (526): on this shared VM run-to-run noise is as large as the compensated
+//! gain, and only the plain L2-resident gain held in all three series.
+//! numpy `bincount` in the 16:28 series: 10.7–11.1 M/s. The L2-resident rows (`accumulate
+//! T16k_P256_G4 … (L2)` of the same bench) are the compute rate: +34–57 % plain, +27–28 %
+//! compensated. The 1 M rows do not show it: the 2-thread rates equal the 1-thread ones (the
+//! other CPU was busy with the other builds; CPU-seconds equal wall seconds), and the bare
+//! 2-thread streaming read of the 64 MiB ran at 200–321 M/s (median) against 443–476 on the
+//! idle VM, so the 64 MiB case was bound by what memory bandwidth and CPU the other processes
+//! left, and whether 2 threads plain reach 25× numpy (≥ ~310 M/s) on the idle VM was not
+//! measured. In a throw-away L2-resident microbenchmark of the kernel alone the phasor loop
+//! took ~45 % of the time and the group search and sums ~55 % before this change, about half
+//! each after it: the phasor polynomial (its operations fixed by the bit contract, no FMA) is
+//! now as large a part as everything else. Not kept, no measurable gain: the phasor loop
+//! without the `fast` select (216 vs 215 M/s L2-resident plain); in the microbenchmark,
+//! (−sin, sin) pairs written by the phasor loop and broadcast instead of the sign flip
+//! (slower), and group sums held in four registers with masked adds (no faster than the
+//! line-wide load/add/store); longer field prefetch distances and L2 prefetch hints gave no
+//! difference above the noise of the loaded VM.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
@@ -130,12 +171,14 @@ impl From<&[Contribution]> for ContributionColumns {
     }
 }
 
-/// Cosines and sines of one block of phasors, each row on its own cache lines.
+/// Cosines and sines of one block of phasors, each row on its own cache lines, and the
+/// byte offset of each contribution's group sum (AVX-512F kernel; [`INCOHERENT_OFFSET`] for id 0).
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
 pub(super) struct TrigBlock {
     cos: [f64; BLOCK],
     sin: [f64; BLOCK],
+    offset: [u64; BLOCK],
 }
 
 impl Default for TrigBlock {
@@ -143,9 +186,16 @@ impl Default for TrigBlock {
         TrigBlock {
             cos: [0.0; BLOCK],
             sin: [0.0; BLOCK],
+            offset: [0; BLOCK],
         }
     }
 }
+
+/// The group-offset marker of an id-0 (incoherent) contribution in [`TrigBlock::offset`].
+const INCOHERENT_OFFSET: u64 = u64::MAX;
+
+/// Bytes from one group sum to the next in `GroupTable::sums`.
+const SUM_BYTES: u64 = std::mem::size_of::<GroupSum>() as u64;
 
 /// The code that adds columns. Every kernel gives the same bits ([`Accumulator::add`]'s).
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
@@ -328,6 +378,15 @@ impl Accumulator {
                 prefetch(cycles.as_ptr().wrapping_add(start + 2 * BLOCK + k));
                 prefetch(ids.as_ptr().wrapping_add(start + 2 * BLOCK + k));
             }
+            if W512 {
+                // SAFETY: the caller has AVX2 and AVX-512F (`columns_avx512`).
+                unsafe {
+                    group_offsets_512(table, idb, &mut trig.offset);
+                    add_block_512::<COMP>(table, incoherent, trig, fb);
+                }
+                start += len;
+                continue;
+            }
             // Grouped sums.
             // SAFETY (loads below): `first` is a `[u64; 4]` (32 bytes, unaligned load).
             let mut first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
@@ -355,16 +414,99 @@ impl Accumulator {
                     first = unsafe { _mm256_loadu_si256(table.first.as_ptr().cast()) };
                     g
                 };
-                // SAFETY: the caller has AVX2, and AVX-512F when `W512` (`columns_avx512`).
-                unsafe {
-                    if W512 {
-                        add_one_512::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j])
-                    } else {
-                        add_one_256::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j])
-                    }
-                }
+                // SAFETY: the caller has AVX2 (`columns_avx2`, `columns_avx512`).
+                unsafe { add_one_256::<COMP>(&mut table.sums[g], field, trig.cos[j], trig.sin[j]) }
             }
             start += len;
+        }
+    }
+}
+
+/// The group of every contribution of a block, as the byte offset of its sum in `table.sums`
+/// (`g · size_of::<GroupSum>()`, or [`INCOHERENT_OFFSET`] for id 0), groups created in order of
+/// first appearance exactly as `GroupTable::group` one contribution at a time would. Eight ids
+/// at a time: one 8-lane compare against each of the first four groups' ids gives the offsets
+/// of a chunk whose ids all belong to those groups (the common case, about one vector
+/// instruction per contribution); a chunk with id 0, a new id or a fifth or later group goes
+/// through `GroupTable::group` lane by lane, in order.
+///
+/// # Safety
+/// The CPU must have AVX2 and AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn group_offsets_512(table: &mut super::GroupTable, ids: &[u64], offset: &mut [u64; BLOCK]) {
+    use std::arch::x86_64::*;
+    let lane_by_lane = |table: &mut super::GroupTable, r: std::ops::Range<usize>, o: &mut [u64]| {
+        for (o, &id) in o[r.clone()].iter_mut().zip(&ids[r]) {
+            *o = if id == INCOHERENT {
+                INCOHERENT_OFFSET
+            } else {
+                SUM_BYTES * table.group(id) as u64
+            };
+        }
+    };
+    let mut j = 0;
+    // SAFETY: AVX-512F is the caller's promise; `ids[j..j + 8]` is in bounds (loop condition)
+    // and `offset[j..j + 8]` too (`ids.len() ≤ BLOCK`), both unaligned 64-byte moves.
+    unsafe {
+        let zero = _mm512_setzero_si512();
+        while j + 8 <= ids.len() {
+            let id = _mm512_loadu_si512(ids.as_ptr().add(j).cast());
+            // `first` holds 0 for a group not created yet: lanes with id 0 are excluded from
+            // the fast case, so a match is always a group that exists.
+            let f = table.first;
+            let k0 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[0] as i64));
+            let k1 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[1] as i64));
+            let k2 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[2] as i64));
+            let k3 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[3] as i64));
+            let kz = _mm512_cmpeq_epi64_mask(id, zero);
+            if (k0 | k1 | k2 | k3) & !kz == 0xFF {
+                let b = SUM_BYTES as i64;
+                let mut o = _mm512_maskz_mov_epi64(k1, _mm512_set1_epi64(b));
+                o = _mm512_mask_mov_epi64(o, k2, _mm512_set1_epi64(2 * b));
+                o = _mm512_mask_mov_epi64(o, k3, _mm512_set1_epi64(3 * b));
+                _mm512_storeu_si512(offset.as_mut_ptr().add(j).cast(), o);
+            } else {
+                lane_by_lane(table, j..j + 8, offset);
+            }
+            j += 8;
+        }
+    }
+    lane_by_lane(table, j..ids.len(), offset);
+}
+
+/// Adds a block whose group offsets [`group_offsets_512`] has found (`trig.offset`) and whose
+/// phasors are in `trig.cos`, `trig.sin`: each contribution through [`add_one_512`] into its
+/// group's sum, or its |E|² into the incoherent sum, in order; the fields a block ahead asked
+/// for by prefetch hints.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `trig.offset[..fields.len()]` must be offsets of groups that
+/// exist in `table.sums` (or [`INCOHERENT_OFFSET`]), as [`group_offsets_512`] writes them.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn add_block_512<const COMP: bool>(
+    table: &mut super::GroupTable,
+    incoherent: &mut super::CompSum,
+    trig: &TrigBlock,
+    fields: &[Field3],
+) {
+    let base = table.sums.as_mut_ptr().cast::<u8>();
+    for (j, field) in fields.iter().enumerate() {
+        // The field a block ahead (48 bytes apart: every cache line is asked for).
+        prefetch(std::ptr::from_ref(field).wrapping_add(BLOCK));
+        let off = trig.offset[j];
+        if off == INCOHERENT_OFFSET {
+            let e2 = field[0].norm_sqr() + field[1].norm_sqr() + field[2].norm_sqr();
+            incoherent.add(e2, COMP);
+            continue;
+        }
+        // SAFETY: `off` is `g · size_of::<GroupSum>()` for a group `g < table.sums.len()`
+        // (the caller's promise), so `base + off` is that group's sum, aligned, and nothing
+        // else refers to it during the call; AVX-512F: the caller's promise.
+        unsafe {
+            let sum = &mut *base.add(off as usize).cast::<GroupSum>();
+            add_one_512::<COMP>(sum, field, trig.cos[j], trig.sin[j]);
         }
     }
 }

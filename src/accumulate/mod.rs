@@ -30,7 +30,8 @@
 //!
 //! [`accumulate_points`] and [`accumulate_points_par`] (rayon, over points) take contributions
 //! laid out point by point (CSR: `offsets`), which keeps one point's accumulators in L1.
-//! Coherence ids are found through a small open-addressing table (one probe, predictable),
+//! Coherence ids are found by a compare against the ids of a point's first four groups, and
+//! for a fifth and later group through a small open-addressing table (one probe, predictable),
 //! and phasors are computed 64 contributions at a time in a branch-free loop the compiler
 //! vectorizes. The core owns no allocation per contribution and can be benchmarked alone.
 //!
@@ -268,18 +269,20 @@ struct Slot {
     group: usize,
 }
 
-/// Open-addressing (linear probing) map coherence id → group, plus the groups in order of
-/// first appearance. Clearing touches only the used slots.
+/// Coherence id → group: the first four groups by a compare against their ids (`first`), the
+/// fifth and later through an open-addressing (linear probing) hash table; plus the groups in
+/// order of first appearance. Clearing touches only the used slots.
 #[derive(Clone, Debug, Default)]
 struct GroupTable {
     ids: Vec<u64>,
+    /// The hash slot of each group of the table (groups 4 and later; entry g − 4).
     slot_of: Vec<usize>,
     sums: Vec<GroupSum>,
     table: Vec<Slot>,
     /// 64 − log2(table.len()).
     shift: u32,
-    /// The ids of groups 0..4 (0 where there is no such group yet), for the one-compare
-    /// lookup of the column kernel (`columns.rs`).
+    /// The ids of groups 0..4 (0 where there is no such group yet): found by compare, never
+    /// in the hash table (also the column kernels' one-compare lookup, `columns.rs`).
     first: [u64; 4],
 }
 
@@ -304,7 +307,12 @@ impl GroupTable {
     /// The group of `id` (≠ 0), created if new.
     #[inline(always)]
     fn group(&mut self, id: u64) -> usize {
-        if !self.table.is_empty() {
+        // `first` holds 0 for a group not created yet, and `id` ≠ 0.
+        if let Some(g) = self.first.iter().position(|&f| f == id) {
+            return g;
+        }
+        // The hash table holds groups only once there are more than four.
+        if self.ids.len() > self.first.len() {
             let mask = self.table.len() - 1;
             let mut h = self.home(id);
             loop {
@@ -321,11 +329,27 @@ impl GroupTable {
         self.insert(id)
     }
 
-    #[cold]
-    #[inline(never)]
+    /// A new group for `id`: one of the first four (its id in `first`), or a hash slot.
+    #[inline(always)]
     fn insert(&mut self, id: u64) -> usize {
         let g = self.ids.len();
-        if 2 * (g + 1) > self.table.len() {
+        match self.first.get_mut(g) {
+            Some(f) => {
+                *f = id;
+                self.ids.push(id);
+                self.sums.push(GroupSum::default());
+                g
+            }
+            None => self.insert_hashed(id),
+        }
+    }
+
+    /// A new group for `id` in a hash slot (the fifth and later groups).
+    #[inline(never)]
+    fn insert_hashed(&mut self, id: u64) -> usize {
+        let g = self.ids.len();
+        let hashed = g - self.first.len() + 1;
+        if 2 * hashed > self.table.len() {
             self.grow();
         }
         let mask = self.table.len() - 1;
@@ -334,27 +358,27 @@ impl GroupTable {
             h = (h + 1) & mask;
         }
         self.table[h] = Slot { id, group: g };
-        if let Some(f) = self.first.get_mut(g) {
-            *f = id;
-        }
-        self.ids.push(id);
         self.slot_of.push(h);
+        self.ids.push(id);
         self.sums.push(GroupSum::default());
         g
     }
 
+    /// Doubles the hash table (at least 16 slots) and puts the hashed groups back in.
+    #[cold]
     fn grow(&mut self) {
         let len = (2 * self.table.len()).max(16);
         self.table = vec![Slot::default(); len];
         self.shift = 64 - len.trailing_zeros();
         let mask = len - 1;
-        for (g, &id) in self.ids.iter().enumerate() {
+        let skip = self.first.len();
+        for (g, &id) in self.ids.iter().enumerate().skip(skip) {
             let mut h = self.home(id);
             while self.table[h].id != 0 {
                 h = (h + 1) & mask;
             }
             self.table[h] = Slot { id, group: g };
-            self.slot_of[g] = h;
+            self.slot_of[g - skip] = h;
         }
     }
 

@@ -951,6 +951,80 @@ fn columns_take_the_wide_phase_path_like_the_rows() {
     }
 }
 
+/// Ids that walk every branch of the kernels' group search: the ids of one point, 150
+/// contributions (blocks of 64, 64 and 22: chunks of eight and a tail of six).
+fn crafted_ids() -> Vec<u64> {
+    let mut ids: Vec<u64> = (0..150).map(|j| [7, 13][j % 2]).collect();
+    ids[3] = 0; // id 0 in the first chunk (two groups exist)
+    ids[40] = 11; // a third group first seen in a later chunk of the first block
+    ids[66] = 17; // a fourth group first seen in the second block
+    ids[70] = 19; // a fifth group (past the 4-id compare), in the second block
+    ids[71] = 0; // id 0 next to it
+    for j in (72..128).step_by(5) {
+        ids[j] = [11, 17, 19][j % 3]; // all five groups mixed in full chunks
+    }
+    ids[130] = 23; // a sixth group in the third block's chunks
+    ids[147] = 29; // a seventh in its six-contribution tail
+    ids[148] = 0;
+    ids
+}
+
+#[test]
+fn column_kernels_walk_every_group_search_branch() {
+    // Every kernel against `Accumulator::add` one by one, bit for bit (intensity, groups in order
+    // of first appearance, their fields), both summations: the crafted point above; the same
+    // with only the first four groups (all chunks after the first take the 8-lane compare);
+    // one contribution; one of id 0; and a batch of those points with an empty one.
+    let mut r = Rng(29);
+    let crafted: Vec<Contribution> = crafted_ids()
+        .into_iter()
+        .map(|id| c(id, 1e6 * r.sym(), r.field()))
+        .collect();
+    let four: Vec<Contribution> = (0..200)
+        .map(|j| {
+            c(
+                [7, 13, 11, 17][(j * 7 + j / 3) % 4],
+                1e6 * r.sym(),
+                r.field(),
+            )
+        })
+        .collect();
+    let one = vec![c(5, 0.3, r.field())];
+    let zero = vec![c(0, 0.3, r.field())];
+    let points: [&[Contribution]; 5] = [&crafted, &four, &one, &zero, &[]];
+    for s in [Summation::Compensated, Summation::Plain] {
+        for (k, cs) in points.iter().enumerate() {
+            let by_add = added_one_by_one(s, cs);
+            let groups = by_add.1.len();
+            for kernel in column_kernels() {
+                assert_same_bits(
+                    &format!(
+                        "point {k} ({} contributions, {groups} groups) {s:?} {kernel:?}",
+                        cs.len()
+                    ),
+                    &by_add,
+                    &added_as_columns_using(kernel, s, cs),
+                );
+            }
+        }
+        assert_eq!(added_one_by_one(s, &crafted).1.len(), 7);
+        let all: Vec<Contribution> = points.iter().flat_map(|cs| cs.iter().copied()).collect();
+        let offsets = offsets_from_counts(&points.map(|cs| cs.len()));
+        let cols = ContributionColumns::from(&all[..]);
+        for kernel in column_kernels() {
+            let mut out = [0.0; 5];
+            accumulate_columns_using(kernel, &cols, &offsets, s, &mut out);
+            for (k, cs) in points.iter().enumerate() {
+                assert_eq!(
+                    out[k].to_bits(),
+                    added_one_by_one(s, cs).0.to_bits(),
+                    "batch point {k} {s:?} {kernel:?}"
+                );
+            }
+        }
+    }
+}
+
 #[test]
 fn columns_keep_the_compensated_guarantee() {
     // The one-large-and-a-million-tiny-terms case of the rows, through the columns: E = 1 +
