@@ -65,7 +65,7 @@ use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
 use crate::output::beat_table::BeatTable;
 use crate::output::free_kernel::{FreeKernel, FreeScratch};
-use crate::output::stack_kernel::{self, KernelRay, KernelScratch, StackKernel};
+use crate::output::stack_kernel::{self, KernelArithmetic, KernelRay, KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -255,6 +255,11 @@ pub enum PixelPath {
     Auto,
     /// Every pixel traced exactly ([`arrivals_at`]).
     Exact,
+    /// As [`PixelPath::Auto`], but the kernels' fields in complex arithmetic and their spectral
+    /// sums through [`Beats`] as the exact trace's pixels are summed: the reference that
+    /// `Auto`'s real arithmetic and direct sums equal bit for bit
+    /// (`tests/suite/stack_kernel.rs`).
+    KernelReference,
 }
 
 /// A render request.
@@ -375,6 +380,9 @@ struct Context<'a> {
     free: Option<FreeKernel>,
     /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
     table: Option<BeatTable>,
+    /// [`PixelPath::KernelReference`]: the kernels' fields in complex arithmetic, their sums
+    /// through [`Beats`].
+    reference: bool,
 }
 
 /// Per-thread scratch space.
@@ -387,6 +395,9 @@ struct Scratch {
     kernel: KernelScratch,
     free: FreeScratch,
     kernel_rays: Vec<KernelRay>,
+    /// Scratch of [`stack_kernel::shade_terms`].
+    contributions: Vec<(u64, f64, f64, DVec3)>,
+    terms: Vec<(f64, f64, f64)>,
 }
 
 impl Context<'_> {
@@ -422,12 +433,43 @@ impl Context<'_> {
                 point,
                 observer,
                 self.paper_rules,
+                if self.reference {
+                    KernelArithmetic::Complex
+                } else {
+                    KernelArithmetic::Real
+                },
                 &mut s.kernel,
                 &mut s.kernel_rays,
             ),
             (None, Some(f)) => f.rays(point, observer, &mut s.free, &mut s.kernel_rays),
             (None, None) => false,
         };
+        if by_kernel && !self.reference && self.table.is_some() {
+            // Each shading's beat terms straight from the real fields, summed from the table
+            // (bit for bit what `shade`, `Beats` and `add_spectral_sums` give).
+            let table = self.table.as_ref().expect("checked");
+            for (k, sh) in self.shadings.iter().enumerate() {
+                let direct = stack_kernel::shade_terms(
+                    &s.kernel_rays,
+                    *sh,
+                    &mut s.contributions,
+                    &mut s.terms,
+                )
+                .and_then(|constant| table.weighted_sum_real(constant, &s.terms));
+                let w = match direct {
+                    Some(w) => w,
+                    None => {
+                        stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
+                        s.beats[k].set(&s.prepared);
+                        s.beats[k].weighted_sum(&self.lambdas, &self.weights, &mut s.acc)
+                    }
+                };
+                for c in 0..3 {
+                    out[k][c] += w[c];
+                }
+            }
+            return (s.kernel_rays.len(), true);
+        }
         if by_kernel {
             for (k, sh) in self.shadings.iter().enumerate() {
                 stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
@@ -569,12 +611,12 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
         optics.push(o);
     }
-    let kernel = if path == PixelPath::Auto && !dispersive {
+    let kernel = if path != PixelPath::Exact && !dispersive {
         StackKernel::new(&built.scene, &optics[0], &plans[0], &settings)
     } else {
         None
     };
-    let free = if path == PixelPath::Auto && !dispersive {
+    let free = if path != PixelPath::Exact && !dispersive {
         FreeKernel::new(&built.scene, &optics[0], &settings)
     } else {
         None
@@ -590,6 +632,7 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         kernel,
         free,
         table,
+        reference: path == PixelPath::KernelReference,
         built: &built,
         settings: &settings,
         lambdas: samples.iter().map(|s| s.0).collect(),
