@@ -145,6 +145,21 @@ pub fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> FresnelCoe
 /// (`tests/suite/stack_kernel.rs`, `real_fresnel_is_the_complex_one_bit_for_bit`).
 /// For the per-pixel kernels, which vouch only for pixels away from every critical angle.
 pub fn fresnel_real_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> [f64; 4] {
+    let [r_s, r_p] = fresnel_real_pair_with_cos2_t(n1, n2, cos_i, c2t, true);
+    let [t_s, t_p] = fresnel_real_pair_with_cos2_t(n1, n2, cos_i, c2t, false);
+    [r_s, r_p, t_s, t_p]
+}
+
+/// The two coefficients of [`fresnel_real_with_cos2_t`] one event uses, (r_s, r_p) when
+/// `reflect`, else (t_s, t_p), bit for bit, without forming the other two.
+#[inline]
+pub fn fresnel_real_pair_with_cos2_t(
+    n1: f64,
+    n2: f64,
+    cos_i: f64,
+    c2t: f64,
+    reflect: bool,
+) -> [f64; 2] {
     debug_assert!(
         c2t >= 0.0,
         "total internal reflection has complex coefficients"
@@ -156,12 +171,14 @@ pub fn fresnel_real_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> [f64;
     let n1ct = cos_t * n1;
     let den_s = n1ci + n2ct;
     let den_p = n2ci + n1ct;
-    let (ns, np) = (den_s * den_s, den_p * den_p);
+    let (a_s, a_p) = if reflect {
+        (n1ci - n2ct, n2ci - n1ct)
+    } else {
+        (2.0 * n1ci, 2.0 * n1ci)
+    };
     [
-        ((n1ci - n2ct) * den_s) / ns,
-        ((n2ci - n1ct) * den_p) / np,
-        ((2.0 * n1ci) * den_s) / ns,
-        ((2.0 * n1ci) * den_p) / np,
+        (a_s * den_s) / (den_s * den_s),
+        (a_p * den_p) / (den_p * den_p),
     ]
 }
 

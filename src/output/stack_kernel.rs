@@ -498,6 +498,21 @@ fn start_of(g: [f64; 4]) -> f64 {
     }
 }
 
+/// [`fresnel::s_of_plane_of_incidence`] (the tracer's s vector) bit for bit where it is defined,
+/// its test |d_i × N| > 1e-12 made on the square (a verdict that could differ only within a
+/// rounding of |d_i × N| = 1e-12, while the kernel's rays have |d_i × N| = p/n_k with
+/// p ≥ 1e-9): one square root fewer per event.
+#[inline]
+fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
+    let n_o = if d_i.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    };
+    let c = d_i.cross(n_o);
+    (c.length_squared() > 1e-24).then(|| (c - c.dot(n_o) * n_o).normalize())
+}
+
 /// Complex `e · v`, as [`crate::optics::interaction`] forms it.
 fn dot_complex(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
@@ -873,10 +888,16 @@ impl StackKernel {
                         return false;
                     }
                     // n1 cos θi = q of the arriving segment's slab (n1 is its index).
-                    let cos_i = (s.q[c.seg_slab[i]] / ev.n1).min(1.0);
-                    let c2t = q2_2 / (ev.n2 * ev.n2);
+                    // (x/1 = x: the divisions by an index of 1 are skipped.)
+                    let q1 = s.q[c.seg_slab[i]];
+                    let cos_i = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
+                    let c2t = if ev.n2 == 1.0 {
+                        q2_2
+                    } else {
+                        q2_2 / (ev.n2 * ev.n2)
+                    };
                     let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
-                    let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
+                    let Some(sv) = s_of_plane_of_incidence(d_i, ev.normal) else {
                         return false;
                     };
                     let pick = |f: fresnel::FresnelCoefficients| {
@@ -886,18 +907,20 @@ impl StackKernel {
                             [f.t_s, f.t_p]
                         }
                     };
-                    // (r_s, r_p, t_s, t_p), real: no interface where n1 = n2 (`fresnel`).
-                    let [r_s, r_p, t_s, t_p] = if ev.n1 == ev.n2 {
-                        [0.0, 0.0, 1.0, 1.0]
-                    } else {
-                        fresnel::fresnel_real_with_cos2_t(ev.n1, ev.n2, cos_i, c2t)
+                    // (c_s, c_p), real: no interface where n1 = n2 (`fresnel`).
+                    let vector = match (ev.n1 == ev.n2, ev.reflect) {
+                        (true, true) => [0.0; 2],
+                        (true, false) => [1.0; 2],
+                        (false, reflect) => fresnel::fresnel_real_pair_with_cos2_t(
+                            ev.n1, ev.n2, cos_i, c2t, reflect,
+                        ),
                     };
                     let paper_c = paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
                     s.frames.push(Frame {
                         s: sv,
                         p_i: d_i.cross(sv),
                         p_o: d_o.cross(sv),
-                        vector: if ev.reflect { [r_s, r_p] } else { [t_s, t_p] },
+                        vector,
                         paper: paper_c.map_or([0.0; 2], |[a, b]| [a.re, b.re]),
                     });
                     if arithmetic == KernelArithmetic::Complex {
@@ -1031,12 +1054,22 @@ impl StackKernel {
                 if !(-0.5..=1.5).contains(&t) {
                     continue;
                 }
-                let tm = self.margin / ab.length();
-                if t < -tm || t > 1.0 + tm {
+                // tm = margin/|ab| ≤ margin/l (l = the largest |component| of ab, l ≤ |ab|,
+                // roundings aside): where t is beyond 2·margin/l of both ends the verdicts
+                // below on tm are known without its square root and division.
+                let l = ab.abs().max_element();
+                let far = 2.0 * self.margin;
+                if t * l < -far || (t - 1.0) * l > far {
                     continue;
                 }
-                if t.abs() <= tm || (t - 1.0).abs() <= tm {
-                    return None;
+                if !(t * l > far && (1.0 - t) * l > far) {
+                    let tm = self.margin / ab.length();
+                    if t < -tm || t > 1.0 + tm {
+                        continue;
+                    }
+                    if t.abs() <= tm || (t - 1.0).abs() <= tm {
+                        return None;
+                    }
                 }
                 let x = a + t * ab;
                 let uv = Extent::uv(sh.u, sh.v, &sh.plane, x);
