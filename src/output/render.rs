@@ -49,12 +49,22 @@
 //! --samples 81`: after the 1-D Snell start of the path solver, the skipping of sequences that
 //! cannot reach a pixel, the shared propagation of a source's channels and the beat terms, the
 //! exact trace's profile is flat (solve, reachability test, beats and propagation each 9–15%).
-//! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU
-//! (about a third of that the lateral Newton), the PNG encoding ~6%; README "Measured numbers"
-//! has the timings. `fringe figures --size 240x240 --samples 31` (what `fringe check` makes),
-//! with every shading and Fig. 3 by the kernels: the renders ~47% of its CPU (the kernel's rays
-//! ~18%, the beat table ~14%), Newton's sequence ~28%, the sRGB step ~8% (`perf record
-//! --call-graph dwarf`, loaded 2-core VM).
+//! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU; its
+//! profile is flat too, bound by chains of square roots and divisions (per pixel three
+//! sequences reach the screen's slab: the direct one, which the shield stops, and the two
+//! beams). Issue #14 took 1.3–1.4× of the render's CPU out without changing a bit of its PNG:
+//! one Newton evaluation per pixel and sequence instead of two (cubic start, module docs of
+//! `output::stack_kernel`), real arithmetic for the fields and Fresnel coefficients (bit for bit
+//! the complex ones), each pixel's beat terms summed from the table straight from those fields
+//! (no `SpectralContribution`s, no `Beats`), the shield's verdicts without a square root away
+//! from its edges, and no divisions by an index of 1. Measured interleaved with the previous
+//! binary on the loaded 2-core VM, user + sys CPU: 0.67 → 0.49 s (load ~5), medians 0.94 →
+//! 0.74 s (load ~6); README "Measured numbers" has the idle VM's timings. The rest of the CPU:
+//! the pixel's beat terms and the table ~12%, sRGB ~4%, PNG ~2%. `fringe figures --size
+//! 240x240 --samples 31` (what `fringe check` makes), with every shading and Fig. 3 by the
+//! kernels: the renders ~47% of its CPU before issue #14 (the kernel's rays ~18%, the beat
+//! table ~14%), Newton's sequence ~28%, the sRGB step ~8% (`perf record --call-graph dwarf`,
+//! loaded 2-core VM).
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;
@@ -444,10 +454,9 @@ impl Context<'_> {
             (None, Some(f)) => f.rays(point, observer, &mut s.free, &mut s.kernel_rays),
             (None, None) => false,
         };
-        if by_kernel && !self.reference && self.table.is_some() {
+        if let (true, false, Some(table)) = (by_kernel, self.reference, &self.table) {
             // Each shading's beat terms straight from the real fields, summed from the table
             // (bit for bit what `shade`, `Beats` and `add_spectral_sums` give).
-            let table = self.table.as_ref().expect("checked");
             for (k, sh) in self.shadings.iter().enumerate() {
                 let direct = stack_kernel::shade_terms(
                     &s.kernel_rays,

@@ -33,14 +33,32 @@
 //!   F(p) = Σ_k H_k p / q_k(p) − D = 0,   q_k(p) = √(n_k² − p²) = n_k cos θ_k,
 //!
 //! increasing and convex on [0, min n_k): Newton in f64, safeguarded by bisection, from the
-//! linear extrapolation of the two previous pixels' roots in the row (the row's first pixel
-//! starts from min n_k / 2, so a row's values do not depend on the thread that renders it),
-//! until the step's predicted error is below u/4 of p (`solve_p`). Each segment's direction is
-//! (p u ± q_k N)/n_k (u: the unit lateral direction), the Fresnel coefficients of each event
-//! come from the same cosines the tracer uses (cos θi = q1/n1, cos²θt = q2²/n2²,
-//! [`fresnel::fresnel_with_cos2_t`]), and each channel's field is carried through the events in
-//! the tracer's own frames (s = the plane of incidence's normal, p_i = d_i × s, the child's
-//! frame (s, d_o × s); [`crate::optics::interaction`]).
+//! cubic extrapolation of the four previous pixels' roots in the row (fewer at the row's start;
+//! the row's first pixel starts from min n_k / 2, so a row's values do not depend on the thread
+//! that renders it), until the step's predicted error is below u/4 of p or the step is below
+//! half an ulp of p (`solve_p`). On a pixel pitch much below the heights crossed the cubic start
+//! is within that error already: one evaluation of F per pixel and sequence (the linear start
+//! needed two). Each segment's direction is (p u ± q_k N)/n_k (u: the unit lateral direction),
+//! the Fresnel coefficients of each event come from the same cosines the tracer uses
+//! (cos θi = q1/n1, cos²θt = q2²/n2², [`fresnel::fresnel_with_cos2_t`]), and each channel's
+//! field is carried through the events in the tracer's own frames (s = the plane of incidence's
+//! normal, p_i = d_i × s, the child's frame (s, d_o × s); [`crate::optics::interaction`]).
+//!
+//! # Real arithmetic
+//!
+//! Every event the kernel vouches for is below its critical angle (cos²θt > 1e-6, below) between
+//! the real indices of non-absorbing dielectrics (the kernel refuses any other surface), and
+//! the launch fields are real: every Fresnel coefficient and every field is real. The kernel
+//! therefore forms them in f64 ([`KernelArithmetic::Real`]:
+//! [`fresnel::fresnel_real_pair_with_cos2_t`] and a real carry), with the operations of the
+//! complex ones on their real parts — a product with an imaginary part of exactly 0 rounds its
+//! real part alike, and num-complex's quotient by d + 0i is (a·d)/(d·d) — so the fields are the
+//! complex arithmetic's bit for bit (up to the sign of a zero). `render` then sums a pixel's
+//! beat terms straight from these real fields ([`shade_terms`]) instead of through
+//! [`SpectralContribution`]s and `Beats`. [`KernelArithmetic::Complex`] (the render's
+//! `PixelPath::KernelReference`) keeps the complex path as the reference the tests hold the real
+//! one to, bit for bit (`tests/suite/stack_kernel.rs`); events beyond or near a critical angle,
+//! where coefficients are complex, and absorbing media are the exact trace's.
 //!
 //! # Optical path differences
 //!
@@ -134,6 +152,8 @@ struct KernelSource {
     /// Per channel, a linear channel's (reference, cos, sin of its angle): its launch field
     /// as [`Channel::launch`] forms it, the angle's cosine and sine taken once.
     linear: Vec<Option<(DVec3, f64, f64)>>,
+    /// Per channel, √(intensity), taken once.
+    sqrt_intensity: Vec<f64>,
     coherence_length_m: f64,
     /// One per candidate sequence of the plan, in its order; `None`: never arrives.
     seqs: Vec<Option<Compiled>>,
@@ -683,6 +703,7 @@ impl StackKernel {
                         ChannelField::Dipole { .. } => None,
                     })
                     .collect(),
+                sqrt_intensity: channels.iter().map(|ch| ch.intensity.sqrt()).collect(),
                 channels,
                 coherence_length_m: src.coherence_length_m,
                 seqs,
@@ -972,7 +993,12 @@ impl StackKernel {
                 }
                 let d0 = s.dirs[0];
                 let mut shared: Option<(DVec3, DVec3)> = None;
-                for (ch, linear) in src.channels.iter().zip(&src.linear) {
+                for ((ch, linear), &sqrt_intensity) in src
+                    .channels
+                    .iter()
+                    .zip(&src.linear)
+                    .zip(&src.sqrt_intensity)
+                {
                     let (e, amp) = match *linear {
                         Some((reference, cos, sin)) => {
                             let e_ref = match shared {
@@ -987,7 +1013,7 @@ impl StackKernel {
                         }
                         None => ch.launch(d0),
                     };
-                    let a = amp * ch.intensity.sqrt();
+                    let a = amp * sqrt_intensity;
                     let launch = DVec3::new(e.x * a, e.y * a, e.z * a);
                     let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
                     out.push(KernelRay {
