@@ -841,6 +841,17 @@ impl StackKernel {
                 if *c.seg_slab.last().unwrap() != pix_slab {
                     continue;
                 }
+                // The direct path is the straight segment from the source to the pixel whatever
+                // p: a shield that stops it (the figures' plate hides its source from the whole
+                // screen) is known before solving for p. Its roots start afresh where it next
+                // reaches a pixel.
+                if c.events.is_empty()
+                    && !self.shields.is_empty()
+                    && self.shielded(src, c, point, &[nn]) == Some(true)
+                {
+                    s.guess[idx] = [0.0; 4];
+                    continue;
+                }
                 // The heights crossed per slab: the middle segments, then the first, then the
                 // last (one order for every sequence, so equal legs give equal sums).
                 s.h.copy_from_slice(&c.mid);
