@@ -52,19 +52,21 @@
 //! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU; its
 //! profile is flat too, bound by chains of square roots and divisions (per pixel three
 //! sequences reach the screen's slab: the direct one, which the shield stops, and the two
-//! beams). Issue #14 took 1.3–1.4× of the render's CPU out without changing a bit of its PNG:
+//! beams). Issue #14 cut the render's CPU by about 1.3–1.4× without changing a bit of its PNG:
 //! one Newton evaluation per pixel and sequence instead of two (cubic start, module docs of
-//! `output::stack_kernel`), real arithmetic for the fields and Fresnel coefficients (bit for bit
-//! the complex ones), each pixel's beat terms summed from the table straight from those fields
-//! (no `SpectralContribution`s, no `Beats`), the shield's verdicts without a square root away
-//! from its edges, and no divisions by an index of 1. Measured interleaved with the previous
-//! binary on the loaded 2-core VM, user + sys CPU: 0.67 → 0.49 s (load ~5), medians 0.94 →
-//! 0.74 s (load ~6); README "Measured numbers" has the idle VM's timings. The rest of the CPU:
-//! the pixel's beat terms and the table ~12%, sRGB ~4%, PNG ~2%. `fringe figures --size
-//! 240x240 --samples 31` (what `fringe check` makes), with every shading and Fig. 3 by the
-//! kernels: the renders ~47% of its CPU before issue #14 (the kernel's rays ~18%, the beat
-//! table ~14%), Newton's sequence ~28%, the sRGB step ~8% (`perf record --call-graph dwarf`,
-//! loaded 2-core VM).
+//! `output::stack_kernel`), the shielded direct path dropped before its solve, real arithmetic
+//! for the fields and Fresnel coefficients (bit for bit the complex ones), each pixel's beat
+//! terms summed from the table straight from those fields (no `SpectralContribution`s, no
+//! `Beats`), the shield's verdicts without a square root away from its edges, no divisions by
+//! an index of 1. Interleaved with the previous binary on the 2-core VM loaded by other builds
+//! (load 3–4), user + sys CPU of 8 runs each: 2 threads min 0.87 → 0.66 s, median 1.00 →
+//! 0.71 s; `RAYON_NUM_THREADS=1` min 0.66 → 0.48 s; README "Measured numbers" has the idle
+//! VM's timings. The rest of the CPU: the pixel's beat terms and the table ~12%, sRGB ~4%, PNG
+//! ~2%. `fringe figures --size 240x240 --samples 31` (what `fringe check` makes), with every
+//! shading and Fig. 3 by the kernels: the renders ~47% of its CPU before issue #14 (the
+//! kernel's rays ~18%, the beat table ~14%), Newton's sequence ~28%, the sRGB step ~8%
+//! (`perf record --call-graph dwarf`, loaded 2-core VM); issue #14 took it from 0.26 to 0.24 s
+//! (one thread, min of 5, its PNGs byte-identical).
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;

@@ -47,18 +47,18 @@
 //! # Real arithmetic
 //!
 //! Every event the kernel vouches for is below its critical angle (cos²θt > 1e-6, below) between
-//! the real indices of non-absorbing dielectrics (the kernel refuses any other surface), and
-//! the launch fields are real: every Fresnel coefficient and every field is real. The kernel
-//! therefore forms them in f64 ([`KernelArithmetic::Real`]:
+//! the real indices of lossless dielectrics (the crate's only media; the kernel refuses any
+//! other surface), and the launch fields are real: every Fresnel coefficient and every field is real. The kernel
+//! therefore forms them in f64 (`KernelArithmetic::Real`:
 //! [`fresnel::fresnel_real_pair_with_cos2_t`] and a real carry), with the operations of the
 //! complex ones on their real parts — a product with an imaginary part of exactly 0 rounds its
 //! real part alike, and num-complex's quotient by d + 0i is (a·d)/(d·d) — so the fields are the
 //! complex arithmetic's bit for bit (up to the sign of a zero). `render` then sums a pixel's
-//! beat terms straight from these real fields ([`shade_terms`]) instead of through
-//! [`SpectralContribution`]s and `Beats`. [`KernelArithmetic::Complex`] (the render's
+//! beat terms straight from these real fields (`shade_terms`) instead of through
+//! [`SpectralContribution`]s and `Beats`. `KernelArithmetic::Complex` (the render's
 //! `PixelPath::KernelReference`) keeps the complex path as the reference the tests hold the real
 //! one to, bit for bit (`tests/suite/stack_kernel.rs`); events beyond or near a critical angle,
-//! where coefficients are complex, and absorbing media are the exact trace's.
+//! where coefficients are complex, are the exact trace's.
 //!
 //! # Optical path differences
 //!
