@@ -52,15 +52,18 @@
 //! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU; its
 //! profile is flat too, bound by chains of square roots and divisions (per pixel three
 //! sequences reach the screen's slab: the direct one, which the shield stops, and the two
-//! beams). Issue #14 cut the render's CPU by about 1.3–1.4× without changing a bit of its PNG:
-//! one Newton evaluation per pixel and sequence instead of two (cubic start, module docs of
-//! `output::stack_kernel`), the shielded direct path dropped before its solve, real arithmetic
+//! beams). Issue #14 cut the render's CPU by 1.2–1.4× (loaded VM) without changing a bit of
+//! its PNG, mostly by one Newton evaluation per pixel and sequence instead of two (cubic start,
+//! module docs of `output::stack_kernel`) and the shielded direct path dropped before its
+//! solve; the rest is not resolved by criterion under load (`picture/..._vector` 47.4 ms
+//! against `_vector_reference` 47.9 ms, 300×300, load ~3): real arithmetic
 //! for the fields and Fresnel coefficients (bit for bit the complex ones), each pixel's beat
 //! terms summed from the table straight from those fields (no `SpectralContribution`s, no
 //! `Beats`), the shield's verdicts without a square root away from its edges, no divisions by
 //! an index of 1. Interleaved with the previous binary on the 2-core VM loaded by other builds
 //! (load 3–4), user + sys CPU of 8 runs each: 2 threads min 0.87 → 0.66 s, median 1.00 →
-//! 0.71 s; `RAYON_NUM_THREADS=1` min 0.66 → 0.48 s; README "Measured numbers" has the idle
+//! 0.71 s (another 10: min 0.67 → 0.49 s, median 0.89 → 0.76 s); `RAYON_NUM_THREADS=1` min
+//! 0.66 → 0.48 s; README "Measured numbers" has the idle
 //! VM's timings. The rest of the CPU: the pixel's beat terms and the table ~12%, sRGB ~4%, PNG
 //! ~2%. `fringe figures --size 240x240 --samples 31` (what `fringe check` makes), with every
 //! shading and Fig. 3 by the kernels: the renders ~47% of its CPU before issue #14 (the
