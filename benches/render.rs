@@ -5,7 +5,9 @@
 //! scene (`figures/plate_amplitude_division.json`) at `vector` fidelity in white light with 81
 //! wavelengths, 300 × 300 pixels (throughput in pixels; the 900 × 900 target is 9× the work):
 //! as `fringe render` does it (the parallel-stack kernel, `fringe::output::stack_kernel`) and
-//! with every pixel traced exactly (`render::render_with(.., PixelPath::Exact)`, `_exact`);
+//! with every pixel traced exactly (`render::render_with(.., PixelPath::Exact)`, `_exact`)
+//! and by the kernel's complex reference (`PixelPath::KernelReference`, `_reference`: complex
+//! fields, the sums through `Beats`, the same bits);
 //! and the two pictures `fringe figures` renders for `fringe check` (the plate at 240 × 240,
 //! 31 wavelengths, six shadings; Fig. 3's slits at 240 × 240), by their kernels and exactly.
 //!
@@ -69,6 +71,16 @@ fn bench(c: &mut Criterion) {
     group.throughput(Throughput::Elements((w * h) as u64));
     group.bench_function("amplitude_division_300x300_81_vector", |b| {
         b.iter(|| black_box(render::render(black_box(&case), &req).expect("renders")))
+    });
+    // The kernel's complex reference (complex fields, sums through `Beats`): what the real
+    // arithmetic and the direct beat sums of issue #14 save, same pixels, same bits.
+    group.bench_function("amplitude_division_300x300_81_vector_reference", |b| {
+        b.iter(|| {
+            black_box(
+                render::render_with(black_box(&case), &req, render::PixelPath::KernelReference)
+                    .expect("renders"),
+            )
+        })
     });
     group.bench_function("amplitude_division_300x300_81_vector_exact", |b| {
         b.iter(|| {

@@ -138,6 +138,50 @@ pub fn fresnel_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> FresnelCoe
     }
 }
 
+/// The real parts of [`fresnel_with_cos2_t`]'s (r_s, r_p, t_s, t_p) for cos²θt ≥ 0 (no total
+/// internal reflection, where every coefficient is real), formed without complex arithmetic but
+/// bit for bit as it forms them: num-complex divides by a real-valued denominator d + 0i as
+/// (a·d + 0·0)/(d·d + 0·0), so each quotient here is (a·d)/(d·d) rather than a/d
+/// (`tests/suite/stack_kernel.rs`, `real_fresnel_is_the_complex_one_bit_for_bit`).
+/// For the per-pixel kernels, which vouch only for pixels away from every critical angle.
+pub fn fresnel_real_with_cos2_t(n1: f64, n2: f64, cos_i: f64, c2t: f64) -> [f64; 4] {
+    let [r_s, r_p] = fresnel_real_pair_with_cos2_t(n1, n2, cos_i, c2t, true);
+    let [t_s, t_p] = fresnel_real_pair_with_cos2_t(n1, n2, cos_i, c2t, false);
+    [r_s, r_p, t_s, t_p]
+}
+
+/// The two coefficients of [`fresnel_real_with_cos2_t`] one event uses, (r_s, r_p) when
+/// `reflect`, else (t_s, t_p), bit for bit, without forming the other two.
+#[inline]
+pub fn fresnel_real_pair_with_cos2_t(
+    n1: f64,
+    n2: f64,
+    cos_i: f64,
+    c2t: f64,
+    reflect: bool,
+) -> [f64; 2] {
+    debug_assert!(
+        c2t >= 0.0,
+        "total internal reflection has complex coefficients"
+    );
+    let cos_t = c2t.sqrt();
+    let n1ci = n1 * cos_i;
+    let n2ci = n2 * cos_i;
+    let n2ct = cos_t * n2;
+    let n1ct = cos_t * n1;
+    let den_s = n1ci + n2ct;
+    let den_p = n2ci + n1ct;
+    let (a_s, a_p) = if reflect {
+        (n1ci - n2ct, n2ci - n1ct)
+    } else {
+        (2.0 * n1ci, 2.0 * n1ci)
+    };
+    [
+        (a_s * den_s) / (den_s * den_s),
+        (a_p * den_p) / (den_p * den_p),
+    ]
+}
+
 /// The coefficients of a layer of index n2 and thickness d between n1 and n3, lit from n1
 /// beyond the critical angle of its top face (frustrated total reflection, docs/PHYSICS.md §5):
 /// the Airy sum with the imaginary cos θ2, per s and p.

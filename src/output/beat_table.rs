@@ -159,6 +159,43 @@ impl BeatTable {
         CACHE.with(|c| self.weighted_sum_with(beats, &mut c.borrow_mut()))
     }
 
+    /// [`BeatTable::weighted_sum`] of the paired form given directly: the constant and the
+    /// terms (Δ (m), λ-independent phase e (cycles), real amplitude b), as
+    /// [`crate::output::stack_kernel::shade_terms`] forms them from real fields. The same
+    /// operations as [`BeatTable::weighted_sum`] on the complex amplitude b + 0i, less the
+    /// products of the zero imaginary part: bit for bit the same sums (up to the sign of a
+    /// zero). `None` where a path difference is beyond 2^52 nodes.
+    pub(crate) fn weighted_sum_real(
+        &self,
+        constant: f64,
+        terms: &[(f64, f64, f64)],
+    ) -> Option<[f64; 3]> {
+        CACHE.with(|c| {
+            let cache = &mut c.borrow_mut();
+            let mut out = self.weight_sums.map(|w| constant * w);
+            for &(delta, extra, b) in terms {
+                // Also refuses a NaN.
+                if (delta / self.h).abs().partial_cmp(&4.5e15) != Some(std::cmp::Ordering::Less) {
+                    return None;
+                }
+                let g = self.g(delta, cache);
+                if extra == 0.0 {
+                    for c in 0..3 {
+                        out[c] += b * g[c].re;
+                    }
+                } else {
+                    // (b + 0i) e^{2πie} = b cos + i b sin.
+                    let ph = phasor_from_cycles(extra);
+                    let (re, im) = (b * ph.re, b * ph.im);
+                    for c in 0..3 {
+                        out[c] += re * g[c].re - im * g[c].im;
+                    }
+                }
+            }
+            Some(out)
+        })
+    }
+
     /// [`BeatTable::weighted_sum`] with the node cache `cache`.
     fn weighted_sum_with(&self, beats: &Beats, cache: &mut TableCache) -> Option<[f64; 3]> {
         let (constant, terms) = beats.paired_terms()?;

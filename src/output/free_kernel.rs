@@ -21,14 +21,13 @@
 use crate::harness::case::build;
 use crate::harness::case::spec::Observer;
 use crate::optics::double_double::DoubleDouble;
-use crate::optics::ray::{Field3, INCOHERENT};
+use crate::optics::ray::INCOHERENT;
 use crate::output::stack_kernel::KernelRay;
 use crate::scene::source::{Channel, Emitter, line_launch_direction};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::TraceSettings;
 use crate::trace::path::distance_to_line;
 use glam::DVec3;
-use num_complex::Complex64;
 
 #[derive(Clone, Debug)]
 struct LineSource {
@@ -110,11 +109,7 @@ impl FreeKernel {
             for ch in &src.channels {
                 let (e, amplitude) = ch.launch(d);
                 let a = amplitude * ch.intensity.sqrt();
-                let field: Field3 = [
-                    Complex64::from(e.x * a),
-                    Complex64::from(e.y * a),
-                    Complex64::from(e.z * a),
-                ];
+                let field = DVec3::new(e.x * a, e.y * a, e.z * a);
                 let coherent = !lost_length && ch.coherence_id != INCOHERENT;
                 s.paths.push(path);
                 out.push(KernelRay::new(

@@ -49,12 +49,27 @@
 //! --samples 81`: after the 1-D Snell start of the path solver, the skipping of sequences that
 //! cannot reach a pixel, the shared propagation of a source's channels and the beat terms, the
 //! exact trace's profile is flat (solve, reachability test, beats and propagation each 9–15%).
-//! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU
-//! (about a third of that the lateral Newton), the PNG encoding ~6%; README "Measured numbers"
-//! has the timings. `fringe figures --size 240x240 --samples 31` (what `fringe check` makes),
-//! with every shading and Fig. 3 by the kernels: the renders ~47% of its CPU (the kernel's rays
-//! ~18%, the beat table ~14%), Newton's sequence ~28%, the sRGB step ~8% (`perf record
-//! --call-graph dwarf`, loaded 2-core VM).
+//! With the kernel (900×900, 81 wavelengths) `StackKernel::rays` is ~3/4 of the CPU; its
+//! profile is flat too, bound by chains of square roots and divisions (per pixel three
+//! sequences reach the screen's slab: the direct one, which the shield stops, and the two
+//! beams). Issue #14 cut the render's CPU by 1.2–1.4× (loaded VM) without changing a bit of
+//! its PNG, mostly by one Newton evaluation per pixel and sequence instead of two (cubic start,
+//! module docs of `output::stack_kernel`) and the shielded direct path dropped before its
+//! solve; the rest is not resolved by criterion under load (`picture/..._vector` 47.4 ms
+//! against `_vector_reference` 47.9 ms, 300×300, load ~3): real arithmetic
+//! for the fields and Fresnel coefficients (bit for bit the complex ones), each pixel's beat
+//! terms summed from the table straight from those fields (no `SpectralContribution`s, no
+//! `Beats`), the shield's verdicts without a square root away from its edges, no divisions by
+//! an index of 1. Interleaved with the previous binary on the 2-core VM loaded by other builds
+//! (load 3–4), user + sys CPU of 8 runs each: 2 threads min 0.87 → 0.66 s, median 1.00 →
+//! 0.71 s (another 10: min 0.67 → 0.49 s, median 0.89 → 0.76 s); `RAYON_NUM_THREADS=1` min
+//! 0.66 → 0.48 s; README "Measured numbers" has the idle
+//! VM's timings. The rest of the CPU: the pixel's beat terms and the table ~12%, sRGB ~4%, PNG
+//! ~2%. `fringe figures --size 240x240 --samples 31` (what `fringe check` makes), with every
+//! shading and Fig. 3 by the kernels: the renders ~47% of its CPU before issue #14 (the
+//! kernel's rays ~18%, the beat table ~14%), Newton's sequence ~28%, the sRGB step ~8%
+//! (`perf record --call-graph dwarf`, loaded 2-core VM); issue #14 took it from 0.26 to 0.24 s
+//! (one thread, min of 5, its PNGs byte-identical).
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;
@@ -65,7 +80,7 @@ use crate::harness::case::spec::{Observer, Probe};
 use crate::optics::material::Dispersion;
 use crate::output::beat_table::BeatTable;
 use crate::output::free_kernel::{FreeKernel, FreeScratch};
-use crate::output::stack_kernel::{self, KernelRay, KernelScratch, StackKernel};
+use crate::output::stack_kernel::{self, KernelArithmetic, KernelRay, KernelScratch, StackKernel};
 use crate::scene::{Scene, SceneOptics};
 use crate::trace::beats::{Beats, SpectralContribution};
 use crate::trace::path::Target;
@@ -255,6 +270,11 @@ pub enum PixelPath {
     Auto,
     /// Every pixel traced exactly ([`arrivals_at`]).
     Exact,
+    /// As [`PixelPath::Auto`], but the kernels' fields in complex arithmetic and their spectral
+    /// sums through [`Beats`] as the exact trace's pixels are summed: the reference that
+    /// `Auto`'s real arithmetic and direct sums equal bit for bit
+    /// (`tests/suite/stack_kernel.rs`).
+    KernelReference,
 }
 
 /// A render request.
@@ -375,6 +395,9 @@ struct Context<'a> {
     free: Option<FreeKernel>,
     /// The spectral sums of the kernel's pixels from a table, for grids of 16 samples or more.
     table: Option<BeatTable>,
+    /// [`PixelPath::KernelReference`]: the kernels' fields in complex arithmetic, their sums
+    /// through [`Beats`].
+    reference: bool,
 }
 
 /// Per-thread scratch space.
@@ -387,6 +410,9 @@ struct Scratch {
     kernel: KernelScratch,
     free: FreeScratch,
     kernel_rays: Vec<KernelRay>,
+    /// Scratch of [`stack_kernel::shade_terms`].
+    contributions: Vec<(u64, f64, f64, DVec3)>,
+    terms: Vec<(f64, f64, f64)>,
 }
 
 impl Context<'_> {
@@ -422,12 +448,42 @@ impl Context<'_> {
                 point,
                 observer,
                 self.paper_rules,
+                if self.reference {
+                    KernelArithmetic::Complex
+                } else {
+                    KernelArithmetic::Real
+                },
                 &mut s.kernel,
                 &mut s.kernel_rays,
             ),
             (None, Some(f)) => f.rays(point, observer, &mut s.free, &mut s.kernel_rays),
             (None, None) => false,
         };
+        if let (true, false, Some(table)) = (by_kernel, self.reference, &self.table) {
+            // Each shading's beat terms straight from the real fields, summed from the table
+            // (bit for bit what `shade`, `Beats` and `add_spectral_sums` give).
+            for (k, sh) in self.shadings.iter().enumerate() {
+                let direct = stack_kernel::shade_terms(
+                    &s.kernel_rays,
+                    *sh,
+                    &mut s.contributions,
+                    &mut s.terms,
+                )
+                .and_then(|constant| table.weighted_sum_real(constant, &s.terms));
+                let w = match direct {
+                    Some(w) => w,
+                    None => {
+                        stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
+                        s.beats[k].set(&s.prepared);
+                        s.beats[k].weighted_sum(&self.lambdas, &self.weights, &mut s.acc)
+                    }
+                };
+                for c in 0..3 {
+                    out[k][c] += w[c];
+                }
+            }
+            return (s.kernel_rays.len(), true);
+        }
         if by_kernel {
             for (k, sh) in self.shadings.iter().enumerate() {
                 stack_kernel::shade(&s.kernel_rays, *sh, &mut s.prepared);
@@ -569,12 +625,12 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         plans.push(trace::plan(&built.scene, &o, &targets, &settings.limits));
         optics.push(o);
     }
-    let kernel = if path == PixelPath::Auto && !dispersive {
+    let kernel = if path != PixelPath::Exact && !dispersive {
         StackKernel::new(&built.scene, &optics[0], &plans[0], &settings)
     } else {
         None
     };
-    let free = if path == PixelPath::Auto && !dispersive {
+    let free = if path != PixelPath::Exact && !dispersive {
         FreeKernel::new(&built.scene, &optics[0], &settings)
     } else {
         None
@@ -590,6 +646,7 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
         kernel,
         free,
         table,
+        reference: path == PixelPath::KernelReference,
         built: &built,
         settings: &settings,
         lambdas: samples.iter().map(|s| s.0).collect(),

@@ -33,14 +33,32 @@
 //!   F(p) = Σ_k H_k p / q_k(p) − D = 0,   q_k(p) = √(n_k² − p²) = n_k cos θ_k,
 //!
 //! increasing and convex on [0, min n_k): Newton in f64, safeguarded by bisection, from the
-//! linear extrapolation of the two previous pixels' roots in the row (the row's first pixel
-//! starts from min n_k / 2, so a row's values do not depend on the thread that renders it),
-//! until the step's predicted error is below u/4 of p (`solve_p`). Each segment's direction is
-//! (p u ± q_k N)/n_k (u: the unit lateral direction), the Fresnel coefficients of each event
-//! come from the same cosines the tracer uses (cos θi = q1/n1, cos²θt = q2²/n2²,
-//! [`fresnel::fresnel_with_cos2_t`]), and each channel's field is carried through the events in
-//! the tracer's own frames (s = the plane of incidence's normal, p_i = d_i × s, the child's
-//! frame (s, d_o × s); [`crate::optics::interaction`]).
+//! cubic extrapolation of the four previous pixels' roots in the row (fewer at the row's start;
+//! the row's first pixel starts from min n_k / 2, so a row's values do not depend on the thread
+//! that renders it), until the step's predicted error is below u/4 of p or the step is below
+//! half an ulp of p (`solve_p`). On a pixel pitch much below the heights crossed the cubic start
+//! is within that error already: one evaluation of F per pixel and sequence (the linear start
+//! needed two). Each segment's direction is (p u ± q_k N)/n_k (u: the unit lateral direction),
+//! the Fresnel coefficients of each event come from the same cosines the tracer uses
+//! (cos θi = q1/n1, cos²θt = q2²/n2², [`fresnel::fresnel_with_cos2_t`]), and each channel's
+//! field is carried through the events in the tracer's own frames (s = the plane of incidence's
+//! normal, p_i = d_i × s, the child's frame (s, d_o × s); [`crate::optics::interaction`]).
+//!
+//! # Real arithmetic
+//!
+//! Every event the kernel vouches for is below its critical angle (cos²θt > 1e-6, below) between
+//! the real indices of lossless dielectrics (the crate's only media; the kernel refuses any
+//! other surface), and the launch fields are real: every Fresnel coefficient and every field is real. The kernel
+//! therefore forms them in f64 (`KernelArithmetic::Real`:
+//! [`fresnel::fresnel_real_pair_with_cos2_t`] and a real carry), with the operations of the
+//! complex ones on their real parts — a product with an imaginary part of exactly 0 rounds its
+//! real part alike, and num-complex's quotient by d + 0i is (a·d)/(d·d) — so the fields are the
+//! complex arithmetic's bit for bit (up to the sign of a zero). `render` then sums a pixel's
+//! beat terms straight from these real fields (`shade_terms`) instead of through
+//! [`SpectralContribution`]s and `Beats`. `KernelArithmetic::Complex` (the render's
+//! `PixelPath::KernelReference`) keeps the complex path as the reference the tests hold the real
+//! one to, bit for bit (`tests/suite/stack_kernel.rs`); events beyond or near a critical angle,
+//! where coefficients are complex, are the exact trace's.
 //!
 //! # Optical path differences
 //!
@@ -134,6 +152,8 @@ struct KernelSource {
     /// Per channel, a linear channel's (reference, cos, sin of its angle): its launch field
     /// as [`Channel::launch`] forms it, the angle's cosine and sine taken once.
     linear: Vec<Option<(DVec3, f64, f64)>>,
+    /// Per channel, √(intensity), taken once.
+    sqrt_intensity: Vec<f64>,
     coherence_length_m: f64,
     /// One per candidate sequence of the plan, in its order; `None`: never arrives.
     seqs: Vec<Option<Compiled>>,
@@ -156,9 +176,9 @@ pub(crate) struct StackKernel {
 /// Per-thread scratch space of the kernel.
 #[derive(Clone, Debug, Default)]
 pub(crate) struct KernelScratch {
-    /// The last two roots per (source, sequence) in the current row (0: none yet): the next
-    /// pixel starts from their linear extrapolation.
-    guess: Vec<[f64; 2]>,
+    /// The last four roots per (source, sequence) in the current row, newest first (0: none
+    /// yet): the next pixel starts from their cubic extrapolation (`start_of`).
+    guess: Vec<[f64; 4]>,
     h: Vec<f64>,
     ref_h: Vec<f64>,
     /// q_k(p) = √(n_k² − p²) of the slabs the current ray crosses (`h` ≠ 0), and of the
@@ -167,6 +187,23 @@ pub(crate) struct KernelScratch {
     ref_q: Vec<f64>,
     dirs: Vec<DVec3>,
     frames: Vec<Frame>,
+    /// The complex coefficients of each frame ((c_s, c_p) of `vector`, then of the paper's
+    /// rules), filled only by [`KernelArithmetic::Complex`].
+    frames_complex: Vec<[[Complex64; 2]; 2]>,
+}
+
+/// The arithmetic of the kernel's fields.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum KernelArithmetic {
+    /// Real: every event the kernel vouches for is below its critical angle between real
+    /// indices (cos²θt > 1e-6), so the Fresnel coefficients
+    /// ([`fresnel::fresnel_real_with_cos2_t`]) and the launch fields, hence every field, are
+    /// real.
+    Real,
+    /// Complex Fresnel ([`fresnel::fresnel_with_cos2_t`]) and complex fields, as the tracer
+    /// forms them: the reference the real arithmetic equals bit for bit (up to the sign of a
+    /// zero; `tests/suite/stack_kernel.rs`).
+    Complex,
 }
 
 /// One event of a pixel's path: the tracer's frames and the coefficients of both models.
@@ -176,10 +213,12 @@ struct Frame {
     s: DVec3,
     p_i: DVec3,
     p_o: DVec3,
-    /// (c_s, c_p) of complex Fresnel (`vector`).
-    vector: [Complex64; 2],
-    /// (c_s, c_p) under the paper's rules ([`fresnel::paper_rules`]); unused unless asked for.
-    paper: [Complex64; 2],
+    /// (c_s, c_p) of complex Fresnel (`vector`): real below the critical angle
+    /// ([`KernelArithmetic::Real`]).
+    vector: [f64; 2],
+    /// (c_s, c_p) under the paper's rules ([`fresnel::paper_rules`], real below the critical
+    /// angle); unused unless asked for.
+    paper: [f64; 2],
 }
 
 /// One ray of a pixel as the kernel finds it: what every rung of the ladder forms its
@@ -197,10 +236,11 @@ pub(crate) struct KernelRay {
     delta_s_m: f64,
     /// Reflections from the denser side along the path (`scalar_jump`'s π jumps).
     denser_reflections: u32,
-    /// The field under complex Fresnel.
-    vector: Field3,
-    /// The field under the paper's rules (zero unless asked for).
-    paper: Field3,
+    /// The field under complex Fresnel: real (its imaginary parts are exactly 0,
+    /// [`KernelArithmetic`]).
+    vector: DVec3,
+    /// The field under the paper's rules (zero unless asked for), real likewise.
+    paper: DVec3,
 }
 
 impl KernelRay {
@@ -212,8 +252,8 @@ impl KernelRay {
         coherence_id: u64,
         delta_s_m: f64,
         denser_reflections: u32,
-        vector: Field3,
-        paper: Field3,
+        vector: DVec3,
+        paper: DVec3,
     ) -> Self {
         KernelRay {
             path,
@@ -229,6 +269,110 @@ impl KernelRay {
     pub(crate) fn set_delta(&mut self, delta_s_m: f64) {
         self.delta_s_m = delta_s_m;
     }
+}
+
+/// Σ|E|² of a real field, as `norm_sqr` summed over a [`Field3`] with zero imaginary parts
+/// forms it (x² + 0²)… in the same order: bit for bit.
+#[inline]
+fn power(e: DVec3) -> f64 {
+    e.x * e.x + e.y * e.y + e.z * e.z
+}
+
+/// A real field as a [`Field3`].
+#[inline]
+fn complex(e: DVec3) -> Field3 {
+    [
+        Complex64::from(e.x),
+        Complex64::from(e.y),
+        Complex64::from(e.z),
+    ]
+}
+
+/// One contribution of [`shade_terms`]: coherence id, Δs (m), λ-independent phase (cycles),
+/// real field.
+type RealContribution = (u64, f64, f64, DVec3);
+
+/// The beat terms of a pixel's kernel rays under `shading`, without forming
+/// [`SpectralContribution`]s: the constant Σ_k |E_k|² is returned and the terms (Δs (m),
+/// λ-independent phase (cycles), real amplitude b) are left in `terms`, exactly (bit for bit,
+/// up to the sign of a zero) what [`shade`] followed by [`crate::trace::beats::Beats::set`]
+/// gives, every field being real ([`KernelArithmetic`]): the contributions of [`shade`] in its
+/// order, each pair (k, l < k) of one coherence id giving Δ = Δs_k − Δs_l, e = e_k − e_l,
+/// b = 2 E_k·E_l, merged into an earlier term of bitwise equal (Δ, e). `None` where `Beats`
+/// would not use the paired form (more pairs than rays).
+pub(crate) fn shade_terms(
+    rays: &[KernelRay],
+    shading: Shading,
+    contributions: &mut Vec<RealContribution>,
+    terms: &mut Vec<(f64, f64, f64)>,
+) -> Option<f64> {
+    contributions.clear();
+    terms.clear();
+    let scalar = |amplitude: f64| DVec3::new(amplitude, 0.0, 0.0);
+    match shading {
+        Shading::Level(level) => contributions.extend(rays.iter().map(|r| match level {
+            Fidelity::Incoherent => (INCOHERENT, r.delta_s_m, 0.0, scalar(power(r.vector).sqrt())),
+            Fidelity::Scalar => (
+                r.coherence_id,
+                r.delta_s_m,
+                0.0,
+                scalar(power(r.vector).sqrt()),
+            ),
+            Fidelity::ScalarJump => (
+                r.coherence_id,
+                r.delta_s_m,
+                0.5 * r.denser_reflections as f64,
+                scalar(power(r.vector).sqrt()),
+            ),
+            Fidelity::PaperRules => (r.coherence_id, r.delta_s_m, 0.0, r.paper),
+            Fidelity::Vector => (r.coherence_id, r.delta_s_m, 0.0, r.vector),
+        })),
+        Shading::UnpolarizedScalarJump => {
+            let mut k = 0;
+            while k < rays.len() {
+                let first = &rays[k];
+                let mut p = 0.0;
+                while k < rays.len() && rays[k].path == first.path {
+                    p += power(rays[k].vector);
+                    k += 1;
+                }
+                contributions.push((
+                    first.coherence_id,
+                    first.delta_s_m,
+                    0.5 * first.denser_reflections as f64,
+                    scalar(p.sqrt()),
+                ));
+            }
+        }
+    }
+    let mut constant = 0.0;
+    for c in contributions.iter() {
+        constant += power(c.3);
+    }
+    let mut pairs = 0;
+    for (k, a) in contributions.iter().enumerate() {
+        if a.0 != INCOHERENT {
+            pairs += contributions[..k].iter().filter(|b| b.0 == a.0).count();
+        }
+    }
+    if pairs > contributions.len() {
+        return None;
+    }
+    for (k, a) in contributions.iter().enumerate() {
+        if a.0 == INCOHERENT {
+            continue;
+        }
+        for b in contributions[..k].iter().filter(|b| b.0 == a.0) {
+            let (delta, extra) = (a.1 - b.1, a.2 - b.2);
+            // 2 Σ_c a_c conj(b_c) of real fields, summed in `dot_conj`'s order.
+            let amplitude = 2.0 * (a.3.x * b.3.x + a.3.y * b.3.y + a.3.z * b.3.z);
+            match terms.iter_mut().find(|t| t.0 == delta && t.1 == extra) {
+                Some(t) => t.2 += amplitude,
+                None => terms.push((delta, extra, amplitude)),
+            }
+        }
+    }
+    Some(constant)
 }
 
 /// The contributions of a pixel's kernel rays under `shading`, phases split as
@@ -250,19 +394,18 @@ pub(crate) fn shade(rays: &[KernelRay], shading: Shading, out: &mut Vec<Spectral
             Complex64::default(),
         ]
     };
-    let power = |e: &Field3| e.iter().map(|c| c.norm_sqr()).sum::<f64>();
     match shading {
         Shading::Level(level) => out.extend(rays.iter().map(|r| {
             let (coherence_id, extra_cycles, field) = match level {
-                Fidelity::Incoherent => (INCOHERENT, 0.0, scalar(power(&r.vector).sqrt())),
-                Fidelity::Scalar => (r.coherence_id, 0.0, scalar(power(&r.vector).sqrt())),
+                Fidelity::Incoherent => (INCOHERENT, 0.0, scalar(power(r.vector).sqrt())),
+                Fidelity::Scalar => (r.coherence_id, 0.0, scalar(power(r.vector).sqrt())),
                 Fidelity::ScalarJump => (
                     r.coherence_id,
                     0.5 * r.denser_reflections as f64,
-                    scalar(power(&r.vector).sqrt()),
+                    scalar(power(r.vector).sqrt()),
                 ),
-                Fidelity::PaperRules => (r.coherence_id, 0.0, r.paper),
-                Fidelity::Vector => (r.coherence_id, 0.0, r.vector),
+                Fidelity::PaperRules => (r.coherence_id, 0.0, complex(r.paper)),
+                Fidelity::Vector => (r.coherence_id, 0.0, complex(r.vector)),
             };
             SpectralContribution {
                 coherence_id,
@@ -277,7 +420,7 @@ pub(crate) fn shade(rays: &[KernelRay], shading: Shading, out: &mut Vec<Spectral
                 let first = &rays[k];
                 let mut p = 0.0;
                 while k < rays.len() && rays[k].path == first.path {
-                    p += power(&rays[k].vector);
+                    p += power(rays[k].vector);
                     k += 1;
                 }
                 out.push(SpectralContribution {
@@ -295,7 +438,7 @@ impl KernelScratch {
     /// Forget the roots of the previous row: each row then starts alike whichever thread
     /// renders it, so the picture does not depend on the thread count.
     pub(crate) fn new_row(&mut self) {
-        self.guess.fill([0.0; 2]);
+        self.guess.fill([0.0; 4]);
     }
 }
 
@@ -338,6 +481,11 @@ fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> 
         }
         let step = f / df;
         let mut next = p - step;
+        if next == p {
+            // A step below half an ulp of p: p is the root to rounding (bisecting from here
+            // would wander off and back for tens of steps).
+            return Some(p);
+        }
         if !(next > lo && next < hi) {
             next = 0.5 * (lo + hi);
         } else if 1.5 * p / q2_min * step * step <= 0.25 * f64::EPSILON * p {
@@ -351,26 +499,91 @@ fn solve_p(h: &[f64], n: &[f64], d: f64, p_max: f64, guess: f64) -> Option<f64> 
     None
 }
 
-fn dot(e: &Field3, v: DVec3) -> Complex64 {
+/// The first root of a row's pixel: the cubic extrapolation of the last four roots `g`
+/// (newest first) where there are four, else the quadratic, linear or constant one (0: no root
+/// yet, `solve_p` then starts from p_max/2). Along a row p(D) is smooth on the pixel pitch, so
+/// the cubic's error (~ (pitch/height)⁴ of p) is mostly below what one Newton step needs to end
+/// (`solve_p`): one evaluation of F per pixel and sequence instead of two.
+#[inline]
+fn start_of(g: [f64; 4]) -> f64 {
+    let [g1, g2, g3, g4] = g;
+    if g4 > 0.0 {
+        4.0 * (g1 + g3) - 6.0 * g2 - g4
+    } else if g3 > 0.0 {
+        3.0 * (g1 - g2) + g3
+    } else if g2 > 0.0 {
+        2.0 * g1 - g2
+    } else {
+        g1
+    }
+}
+
+/// [`fresnel::s_of_plane_of_incidence`] (the tracer's s vector) bit for bit where it is defined,
+/// its test |d_i × N| > 1e-12 made on the square (a verdict that could differ only within a
+/// rounding of |d_i × N| = 1e-12, while the kernel's rays have |d_i × N| = p/n_k with
+/// p ≥ 1e-9): one square root fewer per event.
+#[inline]
+fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
+    let n_o = if d_i.dot(normal) < 0.0 {
+        normal
+    } else {
+        -normal
+    };
+    let c = d_i.cross(n_o);
+    (c.length_squared() > 1e-24).then(|| (c - c.dot(n_o) * n_o).normalize())
+}
+
+/// Complex `e · v`, as [`crate::optics::interaction`] forms it.
+fn dot_complex(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
 }
 
-/// A channel's launch field through the events, in the tracer's frames, under complex Fresnel
-/// or (`PAPER`) the paper's coefficients.
+/// Real `e · v` in the order of `dot_complex`.
 #[inline(always)]
-fn carry<const PAPER: bool>(launch: Field3, frames: &[Frame]) -> Field3 {
+fn dot_real(e: DVec3, v: DVec3) -> f64 {
+    e.x * v.x + e.y * v.y + e.z * v.z
+}
+
+/// A channel's launch field through the events, in the tracer's frames, under complex Fresnel
+/// or (`PAPER`) the paper's coefficients, in real arithmetic ([`KernelArithmetic::Real`]): each
+/// operation is the real part of `carry_complex`'s, whose imaginary parts stay exactly 0.
+#[inline(always)]
+fn carry<const PAPER: bool>(launch: DVec3, frames: &[Frame]) -> DVec3 {
     let mut f = launch;
     for fr in frames {
         let [cs, cp] = if PAPER { fr.paper } else { fr.vector };
-        let a_s = cs * dot(&f, fr.s);
-        let a_p = cp * dot(&f, fr.p_i);
+        let a_s = cs * dot_real(f, fr.s);
+        let a_p = cp * dot_real(f, fr.p_i);
+        f = DVec3::new(
+            a_s * fr.s.x + a_p * fr.p_o.x,
+            a_s * fr.s.y + a_p * fr.p_o.y,
+            a_s * fr.s.z + a_p * fr.p_o.z,
+        );
+    }
+    f
+}
+
+/// `carry` in complex arithmetic with the complex coefficients ([`KernelArithmetic::Complex`]),
+/// returning the real parts (the imaginary parts are 0).
+fn carry_complex(
+    launch: DVec3,
+    frames: &[Frame],
+    coefficients: &[[[Complex64; 2]; 2]],
+    paper: bool,
+) -> DVec3 {
+    let mut f = complex(launch);
+    for (fr, c) in frames.iter().zip(coefficients) {
+        let [cs, cp] = c[usize::from(paper)];
+        let a_s = cs * dot_complex(&f, fr.s);
+        let a_p = cp * dot_complex(&f, fr.p_i);
         f = [
             a_s * fr.s.x + a_p * fr.p_o.x,
             a_s * fr.s.y + a_p * fr.p_o.y,
             a_s * fr.s.z + a_p * fr.p_o.z,
         ];
     }
-    f
+    debug_assert!(f.iter().all(|c| c.im == 0.0), "a real field gained a phase");
+    DVec3::new(f[0].re, f[1].re, f[2].re)
 }
 
 impl StackKernel {
@@ -490,6 +703,7 @@ impl StackKernel {
                         ChannelField::Dipole { .. } => None,
                     })
                     .collect(),
+                sqrt_intensity: channels.iter().map(|ch| ch.intensity.sqrt()).collect(),
                 channels,
                 coherence_length_m: src.coherence_length_m,
                 seqs,
@@ -585,13 +799,15 @@ impl StackKernel {
 
     /// The rays reaching `point` (seen by `observer`), in the exact trace's order, into `out`
     /// (Δs relative to each source's first ray; the fields under the paper's rules too when
-    /// `paper`), for [`shade`] to form any rung's contributions from; `false` (with `out`
-    /// undefined) where the pixel must be traced exactly (module docs).
+    /// `paper`), for [`shade`] to form any rung's contributions from, the fields formed in
+    /// `arithmetic` (the same bits either way); `false` (with `out` undefined) where the pixel
+    /// must be traced exactly (module docs).
     pub(crate) fn rays(
         &self,
         point: DVec3,
         observer: &Observer,
         paper: bool,
+        arithmetic: KernelArithmetic,
         s: &mut KernelScratch,
         out: &mut Vec<KernelRay>,
     ) -> bool {
@@ -604,7 +820,7 @@ impl StackKernel {
         }
         let pix_slab = self.plane_z.iter().filter(|&&pz| pz < zp).count();
         let total: usize = self.sources.iter().map(|src| src.seqs.len()).sum();
-        s.guess.resize(total, [0.0; 2]);
+        s.guess.resize(total, [0.0; 4]);
         s.h.resize(ns, 0.0);
         s.ref_h.resize(ns, 0.0);
         s.q.resize(ns, 0.0);
@@ -625,6 +841,17 @@ impl StackKernel {
                 if *c.seg_slab.last().unwrap() != pix_slab {
                     continue;
                 }
+                // The direct path is the straight segment from the source to the pixel whatever
+                // p: a shield that stops it (the figures' plate hides its source from the whole
+                // screen) is known before solving for p. Its roots start afresh where it next
+                // reaches a pixel.
+                if c.events.is_empty()
+                    && !self.shields.is_empty()
+                    && self.shielded(src, c, point, &[nn]) == Some(true)
+                {
+                    s.guess[idx] = [0.0; 4];
+                    continue;
+                }
                 // The heights crossed per slab: the middle segments, then the first, then the
                 // last (one order for every sequence, so equal legs give equal sums).
                 s.h.copy_from_slice(&c.mid);
@@ -641,12 +868,11 @@ impl StackKernel {
                     s.h[c.seg_slab[0]] += (c.events[0].z - src.z).abs();
                     s.h[c.seg_slab[last]] += (zp - c.events[last - 1].z).abs();
                 }
-                let [g1, g2] = s.guess[idx];
-                let start = if g2 > 0.0 { 2.0 * g1 - g2 } else { g1 };
-                let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, start) else {
+                let g = s.guess[idx];
+                let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, start_of(g)) else {
                     return false;
                 };
-                s.guess[idx] = [p, g1];
+                s.guess[idx] = [p, g[0], g[1], g[2]];
                 if p < 1e-9 {
                     return false;
                 }
@@ -670,7 +896,9 @@ impl StackKernel {
                     } else {
                         q_of(n, p)
                     };
-                    s.dirs.push((p * u + (sg * q) * nn) / n);
+                    let dir = p * u + (sg * q) * nn;
+                    // x/1 = x: the air's segments skip the division.
+                    s.dirs.push(if n == 1.0 { dir } else { dir / n });
                 }
                 let d_last = s.dirs[last];
                 if !build::records(observer, d_last) {
@@ -685,20 +913,23 @@ impl StackKernel {
                 }
                 // Fresnel coefficients and frames of the events.
                 s.frames.clear();
+                s.frames_complex.clear();
                 for (i, ev) in c.events.iter().enumerate() {
                     let q2_2 = (ev.n2 - p) * (ev.n2 + p);
                     if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
                         return false;
                     }
                     // n1 cos θi = q of the arriving segment's slab (n1 is its index).
-                    let cos_i = (s.q[c.seg_slab[i]] / ev.n1).min(1.0);
-                    let f = if ev.n1 == ev.n2 {
-                        fresnel::fresnel(ev.n1, ev.n2, cos_i)
+                    // (x/1 = x: the divisions by an index of 1 are skipped.)
+                    let q1 = s.q[c.seg_slab[i]];
+                    let cos_i = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
+                    let c2t = if ev.n2 == 1.0 {
+                        q2_2
                     } else {
-                        fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, q2_2 / (ev.n2 * ev.n2))
+                        q2_2 / (ev.n2 * ev.n2)
                     };
                     let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
-                    let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
+                    let Some(sv) = s_of_plane_of_incidence(d_i, ev.normal) else {
                         return false;
                     };
                     let pick = |f: fresnel::FresnelCoefficients| {
@@ -708,17 +939,31 @@ impl StackKernel {
                             [f.t_s, f.t_p]
                         }
                     };
+                    // (c_s, c_p), real: no interface where n1 = n2 (`fresnel`).
+                    let vector = match (ev.n1 == ev.n2, ev.reflect) {
+                        (true, true) => [0.0; 2],
+                        (true, false) => [1.0; 2],
+                        (false, reflect) => fresnel::fresnel_real_pair_with_cos2_t(
+                            ev.n1, ev.n2, cos_i, c2t, reflect,
+                        ),
+                    };
+                    let paper_c = paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
                     s.frames.push(Frame {
                         s: sv,
                         p_i: d_i.cross(sv),
                         p_o: d_o.cross(sv),
-                        vector: pick(f),
-                        paper: if paper {
-                            pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i))
-                        } else {
-                            [Complex64::default(); 2]
-                        },
+                        vector,
+                        paper: paper_c.map_or([0.0; 2], |[a, b]| [a.re, b.re]),
                     });
+                    if arithmetic == KernelArithmetic::Complex {
+                        let f = if ev.n1 == ev.n2 {
+                            fresnel::fresnel(ev.n1, ev.n2, cos_i)
+                        } else {
+                            fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, c2t)
+                        };
+                        s.frames_complex
+                            .push([pick(f), paper_c.unwrap_or([Complex64::default(); 2])]);
+                    }
                 }
                 // The optical path (for the coherence-length rule) and Δs.
                 let mut path = p * d;
@@ -759,7 +1004,12 @@ impl StackKernel {
                 }
                 let d0 = s.dirs[0];
                 let mut shared: Option<(DVec3, DVec3)> = None;
-                for (ch, linear) in src.channels.iter().zip(&src.linear) {
+                for ((ch, linear), &sqrt_intensity) in src
+                    .channels
+                    .iter()
+                    .zip(&src.linear)
+                    .zip(&src.sqrt_intensity)
+                {
                     let (e, amp) = match *linear {
                         Some((reference, cos, sin)) => {
                             let e_ref = match shared {
@@ -774,12 +1024,8 @@ impl StackKernel {
                         }
                         None => ch.launch(d0),
                     };
-                    let a = amp * ch.intensity.sqrt();
-                    let launch: Field3 = [
-                        Complex64::from(e.x * a),
-                        Complex64::from(e.y * a),
-                        Complex64::from(e.z * a),
-                    ];
+                    let a = amp * sqrt_intensity;
+                    let launch = DVec3::new(e.x * a, e.y * a, e.z * a);
                     let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
                     out.push(KernelRay {
                         path: idx,
@@ -790,11 +1036,18 @@ impl StackKernel {
                         },
                         delta_s_m: delta,
                         denser_reflections: c.denser_reflections,
-                        vector: carry::<false>(launch, &s.frames),
-                        paper: if paper {
-                            carry::<true>(launch, &s.frames)
-                        } else {
-                            [Complex64::default(); 3]
+                        vector: match arithmetic {
+                            KernelArithmetic::Real => carry::<false>(launch, &s.frames),
+                            KernelArithmetic::Complex => {
+                                carry_complex(launch, &s.frames, &s.frames_complex, false)
+                            }
+                        },
+                        paper: match (paper, arithmetic) {
+                            (false, _) => DVec3::ZERO,
+                            (true, KernelArithmetic::Real) => carry::<true>(launch, &s.frames),
+                            (true, KernelArithmetic::Complex) => {
+                                carry_complex(launch, &s.frames, &s.frames_complex, true)
+                            }
                         },
                     });
                 }
@@ -838,12 +1091,22 @@ impl StackKernel {
                 if !(-0.5..=1.5).contains(&t) {
                     continue;
                 }
-                let tm = self.margin / ab.length();
-                if t < -tm || t > 1.0 + tm {
+                // tm = margin/|ab| ≤ margin/l (l = the largest |component| of ab, l ≤ |ab|,
+                // roundings aside): where t is beyond 2·margin/l of both ends the verdicts
+                // below on tm are known without its square root and division.
+                let l = ab.abs().max_element();
+                let far = 2.0 * self.margin;
+                if t * l < -far || (t - 1.0) * l > far {
                     continue;
                 }
-                if t.abs() <= tm || (t - 1.0).abs() <= tm {
-                    return None;
+                if !(t * l > far && (1.0 - t) * l > far) {
+                    let tm = self.margin / ab.length();
+                    if t < -tm || t > 1.0 + tm {
+                        continue;
+                    }
+                    if t.abs() <= tm || (t - 1.0).abs() <= tm {
+                        return None;
+                    }
                 }
                 let x = a + t * ab;
                 let uv = Extent::uv(sh.u, sh.v, &sh.plane, x);

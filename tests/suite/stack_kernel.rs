@@ -520,3 +520,130 @@ proptest! {
         prop_assert!(dev <= TOLERANCE, "deviation {:e}", dev);
     }
 }
+
+// ---------------------------------------------------------------------------------------------
+// The kernel's real arithmetic and direct spectral sums against their complex reference
+// ---------------------------------------------------------------------------------------------
+
+/// Below the critical angle between real indices the Fresnel coefficients are real, and
+/// `fresnel_real_with_cos2_t` forms them with the very operations num-complex applies to the
+/// real parts ((a·d)/(d·d) for a quotient a/(d + 0i)): every coefficient bit for bit the real
+/// part of `fresnel_with_cos2_t`'s, whose imaginary part is 0. Indices from nearly equal to a
+/// contrast of 4 either way, angles from normal to grazing incidence and up to the critical
+/// angle (cos²θt down to 1e-12), cos²θt both from `cos2_theta_t` and as the kernel gives it.
+#[test]
+fn real_fresnel_is_the_complex_one_bit_for_bit() {
+    use fringe::optics::fresnel::{cos2_theta_t, fresnel_real_with_cos2_t, fresnel_with_cos2_t};
+    let mut d = Draw(0x5eed_f2e5_04e1);
+    let mut checked = 0;
+    for k in 0..200_000 {
+        let n1 = d.range(1.0, 4.0);
+        let n2 = match k % 4 {
+            0 => n1 * (1.0 + d.range(-1e-9, 1e-9)),
+            1 => d.range(1.0, 4.0),
+            2 => n1 * d.range(0.25, 1.0),
+            _ => n1 * d.range(1.0, 4.0),
+        };
+        let cos_i = match k % 3 {
+            0 => d.unit(),
+            1 => d.range(0.0, 1e-6),
+            _ => 1.0 - d.range(0.0, 1e-6),
+        };
+        let c2t = if k % 2 == 0 {
+            cos2_theta_t(n1, n2, cos_i)
+        } else {
+            // Just above the critical angle's cos²θt = 0, as near as the kernel comes and nearer.
+            d.range(1e-12, 1e-5)
+        };
+        if c2t < 0.0 || n1 == n2 {
+            continue;
+        }
+        let c = fresnel_with_cos2_t(n1, n2, cos_i, c2t);
+        let r = fresnel_real_with_cos2_t(n1, n2, cos_i, c2t);
+        for (name, z, x) in [
+            ("r_s", c.r_s, r[0]),
+            ("r_p", c.r_p, r[1]),
+            ("t_s", c.t_s, r[2]),
+            ("t_p", c.t_p, r[3]),
+        ] {
+            assert_eq!(
+                z.im, 0.0,
+                "{name} complex at n1 {n1} n2 {n2} cos_i {cos_i} c2t {c2t}"
+            );
+            assert_eq!(
+                z.re.to_bits(),
+                x.to_bits(),
+                "{name}: {} against {x} at n1 {n1} n2 {n2} cos_i {cos_i} c2t {c2t}",
+                z.re
+            );
+        }
+        checked += 1;
+    }
+    assert!(
+        checked > 150_000,
+        "only {checked} draws below the critical angle"
+    );
+}
+
+/// A render with the kernels' fast paths (`PixelPath::Auto`: real fields, beat terms summed
+/// straight from the table) and with their reference (`PixelPath::KernelReference`: complex
+/// Fresnel and complex fields, the sums through `Beats`, as before the fast paths).
+fn fast_and_reference(
+    case: &Case,
+    screen: Screen,
+    shadings: Vec<Shading>,
+    spectrum: Spectrum,
+) -> (Render, Render) {
+    let req = Request {
+        screen,
+        shadings,
+        spectrum,
+        progress: false,
+    };
+    (
+        render::render_with(case, &req, PixelPath::Auto).unwrap(),
+        render::render_with(case, &req, PixelPath::KernelReference).unwrap(),
+    )
+}
+
+/// The fast paths change no bit of the plate's pictures at any shading, in white light (the
+/// table's sums, also with the half-cycle jumps of `scalar_jump`), with few samples (no table)
+/// and in monochrome; nor of Fig. 3's slits (the free kernel's real fields).
+#[test]
+fn the_real_kernel_is_its_complex_reference_bit_for_bit() {
+    let case = plate();
+    let screen = Screen::from_probe(&case.spec.probe, Some((48, 40))).unwrap();
+    for spectrum in [white(81), white(31), white(7), Spectrum::CaseLight] {
+        let (fast, reference) = fast_and_reference(&case, screen, all_shadings(), spectrum);
+        assert_eq!(fast.kernel_pixels, 48 * 40);
+        assert_eq!(reference.kernel_pixels, 48 * 40);
+        assert_eq!(linear(&fast), linear(&reference));
+    }
+    let young = fringe::output::figures::young_case().unwrap();
+    let screen = Screen::from_probe(&young.spec.probe, Some((40, 30))).unwrap();
+    let (fast, reference) = fast_and_reference(&young, screen, all_shadings(), white(31));
+    assert!(fast.kernel_pixels > 0);
+    assert_eq!(linear(&fast), linear(&reference));
+}
+
+proptest! {
+    #![proptest_config(crate::common::config(16))]
+
+    /// Random stacks of the class (films and substrates of index 1.1–2.4, so pixels beyond and
+    /// near critical angles, which the kernel leaves to the exact trace's complex
+    /// arithmetic; scenes it refuses, e.g. with tunnelling, are traced exactly both ways):
+    /// the fast paths' pictures are their complex reference's bit for bit at every shading.
+    #[test]
+    fn random_stacks_real_kernel_is_its_complex_reference(seed in any::<u64>()) {
+        let mut d = Draw(seed);
+        let (case, screen, what, _) = random_stack(&mut d);
+        let spectrum = match (d.unit() * 3.0) as u32 {
+            0 => white(21),
+            1 => white(7),
+            _ => Spectrum::CaseLight,
+        };
+        let (fast, reference) = fast_and_reference(&case, screen, all_shadings(), spectrum);
+        prop_assert_eq!(fast.kernel_pixels, reference.kernel_pixels, "{}", what);
+        prop_assert_eq!(linear(&fast), linear(&reference), "{}", what);
+    }
+}
