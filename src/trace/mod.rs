@@ -63,9 +63,6 @@ impl Default for TraceSettings {
 pub struct Plan {
     /// One tree of sequences per source, in the scene's order.
     pub sequences: Vec<SequenceTree>,
-    /// Probe-ray nodes the discovery explored, all sources (its cost; 0 for a plan of given
-    /// sequences). The work preflight counts it (`harness::case::run::preflight`).
-    pub discovery_visits: usize,
 }
 
 impl Plan {
@@ -77,7 +74,6 @@ impl Plan {
                 .into_iter()
                 .map(SequenceTree::from_sequences)
                 .collect(),
-            discovery_visits: 0,
         }
     }
 }
@@ -106,20 +102,12 @@ pub fn plan(
             }
         }
     }
-    let mut discovery_visits = 0;
-    let sequences = scene
-        .sources
-        .iter()
-        .map(|s| {
-            let (tree, visits) =
-                path::discover_sequences(scene, optics, s.emitter, &targets, limits);
-            discovery_visits += visits;
-            tree
-        })
-        .collect();
     Plan {
-        sequences,
-        discovery_visits,
+        sequences: scene
+            .sources
+            .iter()
+            .map(|s| path::discover_sequences(scene, optics, s.emitter, &targets, limits))
+            .collect(),
     }
 }
 

@@ -214,34 +214,3 @@ fn the_per_sample_term_counts_every_point_of_a_scene_without_surfaces() {
     assert_eq!(e.sample_units, SAMPLE_UNITS * 401.0);
     assert!(e.linear_units + e.quadratic_units < e.sample_units, "{e:?}");
 }
-
-/// The discovery is counted by what it explores (`Plan::discovery_visits`): a plane wave on an
-/// unbounded plate is discovered by one probe ray from the stack launch, which explores every
-/// node of the tree once; a point source sends one probe ray per target (the probe point, and
-/// per face its plane point and the probe's specular point), and over unbounded planes each of
-/// them explores the whole tree.
-#[test]
-fn discovery_visits_count_every_probe_ray_s_tree() {
-    use crate::support::airy_plate::airy_plate;
-    use fringe::scene::source::Emitter;
-    use fringe::trace::{self, path::EnumerationLimits};
-    use glam::DVec3;
-    let limits = EnumerationLimits {
-        max_internal_reflections: 5,
-        max_events: 12,
-    };
-    let nodes = |plan: &trace::Plan| plan.sequences.iter().map(|t| t.nodes().len()).sum();
-    let (mut scene, _) = airy_plate(0.3);
-    let optics = scene.optics(550e-9).unwrap();
-    let probe = [DVec3::new(0.0, 0.0, 1e-3)];
-    let plan = trace::plan(&scene, &optics, &probe, &limits);
-    let n: usize = nodes(&plan);
-    assert!(n > 6, "the plate's tree has its orders ({n} nodes)");
-    assert_eq!(plan.discovery_visits, n);
-    scene.sources[0].emitter = Emitter::Point {
-        position: DVec3::new(-2e-3, 0.0, 5e-3),
-    };
-    let plan = trace::plan(&scene, &optics, &probe, &limits);
-    let rays = 1 + scene.surfaces.len() * 2;
-    assert_eq!(plan.discovery_visits, rays * nodes(&plan));
-}

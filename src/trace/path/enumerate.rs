@@ -25,16 +25,14 @@ impl Default for EnumerationLimits {
 /// forward (toward each of `probe_targets`) through the real, bounded scene, branching into
 /// reflected and refracted children, and every node of the resulting ray trees is a candidate
 /// sequence. They are returned as one tree of common beginnings ([`SequenceTree`]: sorted,
-/// without duplicates); the exact solver decides which of them reach a given point. Also
-/// returns the number of probe-ray nodes explored (every node of every probe ray's tree,
-/// duplicates included): what the discovery cost, counted for the work preflight.
+/// without duplicates); the exact solver decides which of them reach a given point.
 pub fn discover_sequences(
     scene: &Scene,
     optics: &SceneOptics,
     emitter: Emitter,
     probe_targets: &[DVec3],
     limits: &EnumerationLimits,
-) -> (SequenceTree, usize) {
+) -> SequenceTree {
     let mut found = TreeBuilder::new();
     // A plane wave on a stack of unbounded parallel planes meets the same planes in the same
     // order along every line, so one probe ray from the solver's own stack launch
@@ -65,12 +63,11 @@ pub fn discover_sequences(
             .map(|&p| probe_start(emitter, p))
             .collect(),
     };
-    let mut visits = 0;
     for (o, d) in starts {
         if !d.is_finite() {
             continue;
         }
-        visits += explore(
+        explore(
             scene,
             optics,
             Probe {
@@ -87,7 +84,7 @@ pub fn discover_sequences(
             &mut found,
         );
     }
-    (found.finish(), visits)
+    found.finish()
 }
 
 /// Where a probe ray toward `p` starts from `emitter`, and its direction.
@@ -128,19 +125,16 @@ struct Probe {
 /// incidence runs thousands of events deep: recursion overflowed a worker thread's stack,
 /// `fringe fuzz --family airy --count 10000 --seed 1`). Children are pushed in reverse and
 /// their tree nodes created when popped, so nodes are made in the order a recursion would
-/// make them: reflected subtree, then tunnelled, then refracted. Returns the number of nodes
-/// explored.
+/// make them: reflected subtree, then tunnelled, then refracted.
 fn explore(
     scene: &Scene,
     optics: &SceneOptics,
     start: Probe,
     limits: &EnumerationLimits,
     found: &mut TreeBuilder,
-) -> usize {
+) {
     let mut stack = vec![start];
-    let mut visits = 0;
     while let Some(p) = stack.pop() {
-        visits += 1;
         let node = match p.parent {
             Some((parent, event)) => found.child(parent, event),
             None => TreeBuilder::ROOT,
@@ -151,7 +145,6 @@ fn explore(
             stack.push(c);
         }
     }
-    visits
 }
 
 /// The children of one probe ray, in the order they are explored: reflected, tunnelled,

@@ -145,20 +145,23 @@ pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 /// Measured CPU-seconds (all threads) per work unit, used only to state the estimate in time.
 /// Calibrated with `benches/preflight.rs` (CPU time from `CLOCK_PROCESS_CPUTIME_ID`, short
 /// scenes repeated to at least 0.5 CPU-s) on the project's idle 2-core Intel Xeon VM on
-/// 29 November 2026, together with `WALKED_NODE_UNITS`, `WALKED_EVENT_UNITS`,
-/// [`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`] and [`MOVED_TRACE`] (one fit: the largest
-/// measured / estimate ratio over the benched scenes as close to 1 as the terms allow);
-/// README "Limits" gives the table and the command. (Before the discovery was counted by its
-/// visits: 5e-7 with 25 and 8 sample units, and fresnel_rhomb at 0.48 of its estimate; 4.4e-7
-/// to 1.05e-6 on an AMD EPYC VM at an earlier runner.)
-pub const SECONDS_PER_WORK_UNIT: f64 = 6.5e-7;
+/// 29 November 2026 (fourteenth session's merge), together with `WALKED_EVENT_UNITS`,
+/// [`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`] and [`MOVED_TRACE`]: measured / estimate 0.90
+/// (1 plate), 0.65 (2 stacked plates), 1.10 (3 plates), 0.99 (plate_two_beam_paper at m = 40),
+/// 1.11–1.56 (the Airy plate walk at m = 2000, 200 angles, two runs), 0.57–1.45 over the
+/// library cases (the ends: tir_interference, plane waves onto a point, and michelson, a point
+/// source over four surfaces: the unit count does not see what a solved event costs per
+/// source kind) but fresnel_rhomb, a 30-µs run at 0.48; README "Limits" gives the table and
+/// the command. (Before: 6e-7 on this VM at the thirteenth session's runner; 4.4e-7 to
+/// 1.05e-6 on an AMD EPYC VM.)
+pub const SECONDS_PER_WORK_UNIT: f64 = 5.0e-7;
 
 /// Work units of one spectral sample at one probe point besides its tracing: the contributions
 /// at every fidelity level, the conditioning terms, the closed-form references and the
-/// observable factor (about 20 µs on the Intel Xeon VM). Without it the cheapest library cases
+/// observable factor (about 15 µs on the Intel Xeon VM). Without it the cheapest library cases
 /// (two slits or two point sources, a few units of tracing per point) were estimated 11–18
 /// times below their run (young_paper, incoherent_sources; `benches/preflight.rs`).
-pub const SAMPLE_UNITS: f64 = 30.0;
+pub const SAMPLE_UNITS: f64 = 25.0;
 
 /// The cost of moving a point's traced arrivals to the next point's wavelength (the same
 /// scene, observer and budget: `trace_point` relabels every arrival instead of tracing), as a
@@ -168,10 +171,10 @@ pub const MOVED_TRACE: f64 = 0.15;
 
 /// Work units of each further spectral sample of a probe point besides its tracing: the
 /// contributions at every fidelity level and the closed-form references again, without the
-/// point's set-up (about 6.5 µs on the Intel Xeon VM: coherence_length, 129 samples per point,
+/// point's set-up (about 5 µs on the Intel Xeon VM: coherence_length, 129 samples per point,
 /// ran at 0.35 of its estimate when every sample counted [`SAMPLE_UNITS`];
 /// `benches/preflight.rs`).
-pub const FURTHER_SAMPLE_UNITS: f64 = 10.0;
+pub const FURTHER_SAMPLE_UNITS: f64 = 8.0;
 
 /// The reflected orders of the rungs of the bounce-convergence report of monochrome Airy cases
 /// (`convergence::convergence`), each traced at 2·orders − 1 internal reflections while that is
@@ -179,12 +182,11 @@ pub const FURTHER_SAMPLE_UNITS: f64 = 10.0;
 pub(super) const CONVERGENCE_ORDERS: [usize; 12] = [1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64];
 
 /// Work units of tracing one node of the sequence tree in the far-field walk (both polarized
-/// models, extents and blockers), beside its discovery visits: about 1.6 visits. It was
-/// 20 when the walk's cost was taken to be linear in m, 1 when every discovery probe ray was
-/// counted as visiting every node; calibrated with its per-event part
+/// models, extents and blockers), beside its discovery visits: about one more visit. It was
+/// 20 when the walk's cost was taken to be linear in m; calibrated with its per-event part
 /// ([`WALKED_EVENT_UNITS`]) against the library Airy cases and the Airy plate at m = 2000
 /// (`benches/preflight.rs`, README "Limits").
-const WALKED_NODE_UNITS: f64 = 1.6;
+const WALKED_NODE_UNITS: f64 = 1.0;
 
 /// Work units per event of every traced path under the far-field walk: the walk shares each
 /// path's beginning with the next order's, but the case run still passes over every arrival's
@@ -206,8 +208,8 @@ struct PointWork {
 }
 
 /// The work of one probe point at one wavelength, counted on the sequence tree the tracer
-/// itself discovers there (`trace::plan`): every node the discovery's probe rays explored (one
-/// unit each, as the discovery counts them: `Plan::discovery_visits`), and the solver then traces every candidate sequence event
+/// itself discovers there (`trace::plan`): every probe ray of discovery visits at most every
+/// node of the tree (one unit each), and the solver then traces every candidate sequence event
 /// by event (one unit per event), or, for a plane wave observed in the far field, every node
 /// of the tree once (the walk of shared beginnings, [`WALKED_NODE_UNITS`] per node) and the
 /// case run passes over every event of every walked path ([`WALKED_EVENT_UNITS`] each).
@@ -241,6 +243,11 @@ fn point_work(
     };
     let walked = walked(&built, pt);
     let probe = probe_targets(&target);
+    // trace::plan's probe rays per source: the probe points, each surface's plane point and the
+    // specular points of the probe on each plane.
+    let rays = (probe.len()
+        + built.scene.surfaces.len() * (1 + probe.len() * built.scene.sources.len()))
+        as f64;
     let full = settings(case, &built, internal).limits;
     let mut depth = full.max_events.min(8);
     let mut previous: Option<f64> = None;
@@ -250,10 +257,6 @@ fn point_work(
             ..full
         };
         let plan = trace::plan(&built.scene, &optics, &probe, &limits);
-        // Discovery: every node its probe rays explored (`Plan::discovery_visits`; a plane
-        // wave on a stack of unbounded planes has one probe ray, a point source one per
-        // target, and a ray that leaves the scene explores no further).
-        let visits = plan.discovery_visits as f64;
         let (mut nodes, mut events) = (0.0, 0.0);
         for tree in &plan.sequences {
             nodes += tree.nodes().len() as f64;
@@ -266,13 +269,13 @@ fn point_work(
         }
         let work = if walked {
             PointWork {
-                linear: visits + WALKED_NODE_UNITS * nodes,
+                linear: (rays + WALKED_NODE_UNITS) * nodes,
                 quadratic: WALKED_EVENT_UNITS * events,
             }
         } else {
             PointWork {
                 linear: 0.0,
-                quadratic: visits + events,
+                quadratic: rays * nodes + events,
             }
         };
         let total = work.linear + work.quadratic;
