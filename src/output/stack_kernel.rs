@@ -308,43 +308,7 @@ pub(crate) fn shade_terms(
 ) -> Option<f64> {
     contributions.clear();
     terms.clear();
-    let scalar = |amplitude: f64| DVec3::new(amplitude, 0.0, 0.0);
-    match shading {
-        Shading::Level(level) => contributions.extend(rays.iter().map(|r| match level {
-            Fidelity::Incoherent => (INCOHERENT, r.delta_s_m, 0.0, scalar(power(r.vector).sqrt())),
-            Fidelity::Scalar => (
-                r.coherence_id,
-                r.delta_s_m,
-                0.0,
-                scalar(power(r.vector).sqrt()),
-            ),
-            Fidelity::ScalarJump => (
-                r.coherence_id,
-                r.delta_s_m,
-                0.5 * r.denser_reflections as f64,
-                scalar(power(r.vector).sqrt()),
-            ),
-            Fidelity::PaperRules => (r.coherence_id, r.delta_s_m, 0.0, r.paper),
-            Fidelity::Vector => (r.coherence_id, r.delta_s_m, 0.0, r.vector),
-        })),
-        Shading::UnpolarizedScalarJump => {
-            let mut k = 0;
-            while k < rays.len() {
-                let first = &rays[k];
-                let mut p = 0.0;
-                while k < rays.len() && rays[k].path == first.path {
-                    p += power(rays[k].vector);
-                    k += 1;
-                }
-                contributions.push((
-                    first.coherence_id,
-                    first.delta_s_m,
-                    0.5 * first.denser_reflections as f64,
-                    scalar(p.sqrt()),
-                ));
-            }
-        }
-    }
+    for_each_contribution(rays, shading, |c| contributions.push(c));
     let mut constant = 0.0;
     for c in contributions.iter() {
         constant += power(c.3);
@@ -375,45 +339,46 @@ pub(crate) fn shade_terms(
     Some(constant)
 }
 
-/// The contributions of a pixel's kernel rays under `shading`, phases split as
-/// [`SpectralContribution`] wants: what `render::prepare` makes of the exact trace's arrivals,
-/// formed as [`crate::trace::contribution_with`] forms each rung (docs/PHYSICS.md §4):
-/// `incoherent` and the scalar rungs carry √I of the ray's exact (`vector`) intensity
-/// I = Σ|E|² (`incoherent` with id 0, `scalar_jump` with ½ cycle per reflection from the
-/// denser side), `paper_rules` the field under the paper's coefficients, `vector` the
-/// complex-Fresnel field; [`Shading::UnpolarizedScalarJump`] one scalar ray per path carrying
-/// the power of all its channels. Every λ-independent phase is exactly what the rung adds:
-/// the exact trace's `extra_cycles` differ from it by whole cycles and the rounding of the
-/// double-double phase reduction (≲ 1e-15 cycles).
-pub(crate) fn shade(rays: &[KernelRay], shading: Shading, out: &mut Vec<SpectralContribution>) {
-    out.clear();
-    let scalar = |amplitude: f64| {
-        [
-            Complex64::from(amplitude),
-            Complex64::default(),
-            Complex64::default(),
-        ]
-    };
+/// Each contribution of a pixel's kernel rays under `shading`, in the rays' order, to `f`
+/// (coherence id, Δs (m), λ-independent phase (cycles), real field), formed as
+/// [`crate::trace::contribution_with`] forms each rung (docs/PHYSICS.md §4): `incoherent`
+/// and the scalar rungs carry √I of the ray's exact (`vector`) intensity I = Σ|E|²
+/// (`incoherent` with id 0, `scalar_jump` with ½ cycle per reflection from the denser side),
+/// `paper_rules` the field under the paper's coefficients, `vector` the complex-Fresnel
+/// field; [`Shading::UnpolarizedScalarJump`] one scalar ray per path carrying the power of all
+/// its channels. Every λ-independent phase is exactly what the rung adds: the exact trace's
+/// `extra_cycles` differ from it by whole cycles and the rounding of the double-double phase
+/// reduction (≲ 1e-15 cycles).
+fn for_each_contribution(
+    rays: &[KernelRay],
+    shading: Shading,
+    mut f: impl FnMut(RealContribution),
+) {
+    let scalar = |amplitude: f64| DVec3::new(amplitude, 0.0, 0.0);
     match shading {
-        Shading::Level(level) => out.extend(rays.iter().map(|r| {
-            let (coherence_id, extra_cycles, field) = match level {
-                Fidelity::Incoherent => (INCOHERENT, 0.0, scalar(power(r.vector).sqrt())),
-                Fidelity::Scalar => (r.coherence_id, 0.0, scalar(power(r.vector).sqrt())),
-                Fidelity::ScalarJump => (
-                    r.coherence_id,
-                    0.5 * r.denser_reflections as f64,
-                    scalar(power(r.vector).sqrt()),
-                ),
-                Fidelity::PaperRules => (r.coherence_id, 0.0, complex(r.paper)),
-                Fidelity::Vector => (r.coherence_id, 0.0, complex(r.vector)),
-            };
-            SpectralContribution {
-                coherence_id,
-                delta_s_m: r.delta_s_m,
-                extra_cycles,
-                field,
+        Shading::Level(level) => {
+            for r in rays {
+                f(match level {
+                    Fidelity::Incoherent => {
+                        (INCOHERENT, r.delta_s_m, 0.0, scalar(power(r.vector).sqrt()))
+                    }
+                    Fidelity::Scalar => (
+                        r.coherence_id,
+                        r.delta_s_m,
+                        0.0,
+                        scalar(power(r.vector).sqrt()),
+                    ),
+                    Fidelity::ScalarJump => (
+                        r.coherence_id,
+                        r.delta_s_m,
+                        0.5 * r.denser_reflections as f64,
+                        scalar(power(r.vector).sqrt()),
+                    ),
+                    Fidelity::PaperRules => (r.coherence_id, r.delta_s_m, 0.0, r.paper),
+                    Fidelity::Vector => (r.coherence_id, r.delta_s_m, 0.0, r.vector),
+                })
             }
-        })),
+        }
         Shading::UnpolarizedScalarJump => {
             let mut k = 0;
             while k < rays.len() {
@@ -423,15 +388,34 @@ pub(crate) fn shade(rays: &[KernelRay], shading: Shading, out: &mut Vec<Spectral
                     p += power(rays[k].vector);
                     k += 1;
                 }
-                out.push(SpectralContribution {
-                    coherence_id: first.coherence_id,
-                    delta_s_m: first.delta_s_m,
-                    extra_cycles: 0.5 * first.denser_reflections as f64,
-                    field: scalar(p.sqrt()),
-                });
+                f((
+                    first.coherence_id,
+                    first.delta_s_m,
+                    0.5 * first.denser_reflections as f64,
+                    scalar(p.sqrt()),
+                ));
             }
         }
     }
+}
+
+/// The contributions of a pixel's kernel rays under `shading` as [`SpectralContribution`]s
+/// (those of [`for_each_contribution`], the fields made complex): what `render::prepare`
+/// makes of the exact trace's arrivals.
+pub(crate) fn shade(rays: &[KernelRay], shading: Shading, out: &mut Vec<SpectralContribution>) {
+    out.clear();
+    for_each_contribution(
+        rays,
+        shading,
+        |(coherence_id, delta_s_m, extra_cycles, field)| {
+            out.push(SpectralContribution {
+                coherence_id,
+                delta_s_m,
+                extra_cycles,
+                field: complex(field),
+            })
+        },
+    );
 }
 
 impl KernelScratch {

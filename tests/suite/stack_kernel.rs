@@ -61,6 +61,17 @@ fn both(
     shadings: Vec<Shading>,
     spectrum: Spectrum,
 ) -> (Render, Render) {
+    auto_and(case, screen, shadings, spectrum, PixelPath::Exact)
+}
+
+/// A render by `PixelPath::Auto` and the same render by `other`.
+fn auto_and(
+    case: &Case,
+    screen: Screen,
+    shadings: Vec<Shading>,
+    spectrum: Spectrum,
+    other: PixelPath,
+) -> (Render, Render) {
     let req = Request {
         screen,
         shadings,
@@ -69,7 +80,7 @@ fn both(
     };
     (
         render::render_with(case, &req, PixelPath::Auto).unwrap(),
-        render::render_with(case, &req, PixelPath::Exact).unwrap(),
+        render::render_with(case, &req, other).unwrap(),
     )
 }
 
@@ -594,16 +605,7 @@ fn fast_and_reference(
     shadings: Vec<Shading>,
     spectrum: Spectrum,
 ) -> (Render, Render) {
-    let req = Request {
-        screen,
-        shadings,
-        spectrum,
-        progress: false,
-    };
-    (
-        render::render_with(case, &req, PixelPath::Auto).unwrap(),
-        render::render_with(case, &req, PixelPath::KernelReference).unwrap(),
-    )
+    auto_and(case, screen, shadings, spectrum, PixelPath::KernelReference)
 }
 
 /// The fast paths change no bit of the plate's pictures at any shading, in white light (the
