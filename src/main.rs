@@ -5,12 +5,6 @@ use fringe::harness::check::{self, CheckOptions, Format};
 use std::path::PathBuf;
 use std::process::ExitCode;
 
-/// The allocator of the command line (not of the library, its tests or benches): `fringe check`
-/// allocates many small short-lived buffers (arrivals, trails, report rows), and glibc's
-/// malloc/free were ~12 % of its CPU (issue #14).
-#[global_allocator]
-static ALLOCATOR: mimalloc::MiMalloc = mimalloc::MiMalloc;
-
 /// The first failed write to stdout other than a closed pipe (a full disk, an I/O error): the
 /// command then exits non-zero instead of leaving a truncated output behind an exit 0.
 static STDOUT_FAILURE: std::sync::Mutex<Option<String>> = std::sync::Mutex::new(None);
