@@ -7,7 +7,8 @@
 use crate::support::stacked_plates::stacked_plates;
 use fringe::harness::case::load::{self, Case};
 use fringe::harness::case::run::{
-    self, FURTHER_SAMPLE_UNITS, MOVED_TRACE, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, WorkEstimate,
+    self, FURTHER_SAMPLE_UNITS, MOVED_TRACE, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT,
+    WALKED_SAMPLE_SCALE, WorkEstimate,
 };
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -40,23 +41,106 @@ fn estimate(c: &Case) -> WorkEstimate {
 
 /// The benched scenes, each with the mean CPU-seconds (all threads) of its run recorded by
 /// `cargo bench -p fringe-benches --bench preflight` on the project's 2-core Intel Xeon VM,
-/// 29 November 2026, idle (fourteenth session's merge) (short scenes averaged over runs of at least
-/// 0.5 CPU-s in all). The estimate (work units × `SECONDS_PER_WORK_UNIT`) must be within 2× of
-/// each: a term dropped or double-counted (the per-sample term, the walk's per-event passes,
-/// the stacked plates' tree) moves some scene out. Scenes span 4 decades of work, so one rate
-/// fitting them all is the claim.
+/// idle, 29 November 2026, in two series: the fourteenth session's merge, and the fifteenth
+/// session's merge 1.2–1.4× slower in a slower phase of the VM (short scenes averaged over runs
+/// of at least 0.5 CPU-s in all; `fresnel_rhomb`, a 40-µs run, from its mean ratio). The
+/// estimate (work units × `SECONDS_PER_WORK_UNIT`) must be within 2× of each run in both
+/// series: a term dropped or double-counted (the per-sample terms, the walk's per-event passes,
+/// the solved points' units, the stacked plates' tree) moves some scene out. Scenes span 4
+/// decades of work, so one rate fitting them all is the claim.
 #[test]
 fn the_estimate_is_within_2x_of_the_calibration_runs() {
-    let scenes: Vec<(&str, Case, f64)> = vec![
-        ("1 plate", stacked(1, &|_| {}), 0.0246),
-        ("2 stacked plates", stacked(2, &|_| {}), 1.397),
-        ("3 stacked plates", stacked(3, &|_| {}), 95.99),
+    let scenes: Vec<(&str, Case, [f64; 2])> = vec![
+        (
+            "bk7_dispersion",
+            case("bk7_dispersion", &|_| {}),
+            [0.0643, 0.1013],
+        ),
+        (
+            "brewster_extinction",
+            case("brewster_extinction", &|_| {}),
+            [0.0136, 0.0201],
+        ),
+        (
+            "coherence_length",
+            case("coherence_length", &|_| {}),
+            [0.2091, 0.2558],
+        ),
+        (
+            "coherence_length_paper_rule",
+            case("coherence_length_paper_rule", &|_| {}),
+            [0.011, 0.016],
+        ),
+        (
+            "fresnel_rhomb",
+            case("fresnel_rhomb", &|_| {}),
+            [3.744e-05, 6.564e-05],
+        ),
+        (
+            "incoherent_sources",
+            case("incoherent_sources", &|_| {}),
+            [0.0027, 0.0038],
+        ),
+        (
+            "lloyd_mirror",
+            case("lloyd_mirror", &|_| {}),
+            [0.0089, 0.0119],
+        ),
+        ("michelson", case("michelson", &|_| {}), [0.0361, 0.052]),
+        (
+            "plate_airy_p",
+            case("plate_airy_p", &|_| {}),
+            [0.0746, 0.1096],
+        ),
+        (
+            "plate_airy_s",
+            case("plate_airy_s", &|_| {}),
+            [0.0878, 0.121],
+        ),
+        (
+            "plate_airy_wavelength",
+            case("plate_airy_wavelength", &|_| {}),
+            [0.0184, 0.029],
+        ),
+        (
+            "plate_two_beam_paper",
+            case("plate_two_beam_paper", &|_| {}),
+            [0.0238, 0.029],
+        ),
+        (
+            "plate_two_beam_unpolarized",
+            case("plate_two_beam_unpolarized", &|_| {}),
+            [0.0263, 0.0359],
+        ),
+        (
+            "thin_film_on_substrate",
+            case("thin_film_on_substrate", &|_| {}),
+            [0.068, 0.0889],
+        ),
+        (
+            "tir_interference",
+            case("tir_interference", &|_| {}),
+            [0.0125, 0.0157],
+        ),
+        (
+            "wedge_fizeau",
+            case("wedge_fizeau", &|_| {}),
+            [0.0139, 0.0169],
+        ),
+        (
+            "young_paper",
+            case("young_paper", &|_| {}),
+            [0.0054, 0.0066],
+        ),
+        ("1 stacked plate(s)", stacked(1, &|_| {}), [0.0246, 0.034]),
+        ("2 stacked plate(s)", stacked(2, &|_| {}), [1.397, 1.776]),
+        ("3 stacked plate(s)", stacked(3, &|_| {}), [95.99, 116.6]),
         (
             "plate_two_beam_paper, m = 40",
             stacked(1, &|d| {
                 d["trace"] = json!({ "max_internal_reflections": 40 })
             }),
-            0.846,
+            [0.8462, 1.001],
         ),
         (
             "plate_airy_s, m = 2000, 200 angles",
@@ -64,39 +148,18 @@ fn the_estimate_is_within_2x_of_the_calibration_runs() {
                 d["trace"] = json!({ "max_internal_reflections": 2000 });
                 d["probe"]["sweep"]["count"] = json!(200);
             }),
-            34.93,
-        ),
-        ("plate_airy_s", case("plate_airy_s", &|_| {}), 0.0878),
-        (
-            "plate_airy_wavelength",
-            case("plate_airy_wavelength", &|_| {}),
-            0.0184,
-        ),
-        (
-            "coherence_length",
-            case("coherence_length", &|_| {}),
-            0.2091,
-        ),
-        ("young_paper", case("young_paper", &|_| {}), 0.0054),
-        ("michelson", case("michelson", &|_| {}), 0.0361),
-        (
-            "tir_interference",
-            case("tir_interference", &|_| {}),
-            0.0125,
-        ),
-        (
-            "incoherent_sources",
-            case("incoherent_sources", &|_| {}),
-            0.0027,
+            [34.93, 35.21],
         ),
     ];
     for (name, c, measured) in scenes {
         let seconds = estimate(&c).units() * SECONDS_PER_WORK_UNIT;
-        let ratio = measured / seconds;
-        assert!(
-            (0.5..=2.0).contains(&ratio),
-            "{name}: estimate {seconds:.4} CPU-s, measured {measured} (ratio {ratio:.2})"
-        );
+        for m in measured {
+            let ratio = m / seconds;
+            assert!(
+                (0.5..=2.0).contains(&ratio),
+                "{name}: estimate {seconds:.4} CPU-s, measured {m} (ratio {ratio:.2})"
+            );
+        }
     }
 }
 
@@ -150,7 +213,10 @@ fn a_non_dispersive_spectrum_is_traced_once_and_every_sample_counts() {
     let r = 129.0 / 33.0;
     assert!((a.quadratic_units / b.quadratic_units - r).abs() < 1e-12 * r);
     // 400 angles.
-    let per_point = |samples: f64| SAMPLE_UNITS + FURTHER_SAMPLE_UNITS * (samples - 1.0);
+    // A far-field point of a plane wave: the walked points' per-sample terms.
+    let per_point = |samples: f64| {
+        WALKED_SAMPLE_SCALE * (SAMPLE_UNITS + FURTHER_SAMPLE_UNITS * (samples - 1.0))
+    };
     assert!((a.sample_units - 400.0 * per_point(129.0)).abs() < 1e-9 * a.sample_units);
     assert!((b.sample_units - 400.0 * per_point(33.0)).abs() < 1e-9 * b.sample_units);
 }
@@ -170,8 +236,8 @@ fn a_wavelength_sweep_is_traced_once() {
     let (a, b) = (with(301), with(31));
     let traced = (1.0 + 300.0 * MOVED_TRACE) / (1.0 + 30.0 * MOVED_TRACE);
     assert!((a.linear_units / b.linear_units - traced).abs() < 1e-12 * traced);
-    assert_eq!(a.sample_units, SAMPLE_UNITS * 301.0);
-    assert_eq!(b.sample_units, SAMPLE_UNITS * 31.0);
+    assert_eq!(a.sample_units, WALKED_SAMPLE_SCALE * SAMPLE_UNITS * 301.0);
+    assert_eq!(b.sample_units, WALKED_SAMPLE_SCALE * SAMPLE_UNITS * 31.0);
     // A thickness sweep changes the scene at every point: traced at each.
     let thick = |count: usize| {
         estimate(&case("plate_airy_wavelength", &|d| {

@@ -135,33 +135,48 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
     2.0 * observed.abs().sqrt() * d + d * d
 }
 
-/// Work units (see [`preflight`]) a case may use before it is refused: about five minutes of
-/// tracing on the busy 2-core machine of this project, about one when it is idle (see
-/// [`SECONDS_PER_WORK_UNIT`]). The Airy plate with 2000 internal reflections at 2000 angles
-/// (about 3.7e8 units) is accepted; three plates stacked in air under a point source (1.7e8 units,
-/// 110 s measured) too; four (2.8e9) are refused.
+/// Work units (see [`preflight`]) a case may use before it is refused: about 220 CPU-seconds
+/// at [`SECONDS_PER_WORK_UNIT`], about two minutes of wall time on the idle 2-core machine of
+/// this project (more when it is busy). The Airy plate with 2000 internal reflections at 2000 angles
+/// (about 3.7e8 units) is accepted; three plates stacked in air under a point source (2.4e8 units,
+/// 96–117 s measured) too; four are refused.
 pub const MAX_PATH_EVENTS: f64 = 5.0e8;
 
 /// Measured CPU-seconds (all threads) per work unit, used only to state the estimate in time.
 /// Calibrated with `benches/preflight.rs` (CPU time from `CLOCK_PROCESS_CPUTIME_ID`, short
-/// scenes repeated to at least 0.5 CPU-s) on the project's idle 2-core Intel Xeon VM on
-/// 29 November 2026 (fourteenth session's merge), together with `WALKED_EVENT_UNITS`,
-/// [`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`] and [`MOVED_TRACE`]: measured / estimate 0.90
-/// (1 plate), 0.65 (2 stacked plates), 1.10 (3 plates), 0.99 (plate_two_beam_paper at m = 40),
-/// 1.11–1.56 (the Airy plate walk at m = 2000, 200 angles, two runs), 0.57–1.45 over the
-/// library cases (the ends: tir_interference, plane waves onto a point, and michelson, a point
-/// source over four surfaces: the unit count does not see what a solved event costs per
-/// source kind) but fresnel_rhomb, a 30-µs run at 0.48; README "Limits" gives the table and
-/// the command. (Before: 6e-7 on this VM at the thirteenth session's runner; 4.4e-7 to
-/// 1.05e-6 on an AMD EPYC VM.)
-pub const SECONDS_PER_WORK_UNIT: f64 = 5.0e-7;
+/// scenes repeated to at least 0.5 CPU-s) on the project's idle 2-core Intel Xeon VM, in two
+/// series of 29 November 2026 (fourteenth session's merge, and the fifteenth session's merge
+/// 1.2–1.4× slower in a slower phase of the VM), together with [`SOLVED_UNITS`],
+/// [`WALKED_SAMPLE_SCALE`], [`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`], `WALKED_NODE_UNITS`,
+/// `WALKED_EVENT_UNITS` and [`MOVED_TRACE`], fitted so that every benched scene (the 17 library
+/// cases, 1 to 3 stacked plates, 40 internal reflections, the Airy walk at m = 2000) lands
+/// within 2× of its estimate in both series: measured / estimate 0.52 (`tir_interference`,
+/// plane waves onto a point, in the faster series) to 1.92 (`lloyd_mirror`; `michelson` and
+/// `thin_film_on_substrate` 1.90–1.91, in the slower one); README "Limits" gives the table and the command. (Before: 5e-7 with one
+/// per-sample term for every point and the solved events at one unit, which put `fresnel_rhomb`
+/// at 0.48 in the faster series and `michelson` at 2.09 in the slower one; 4.4e-7 to 1.05e-6 on
+/// an AMD EPYC VM at an earlier runner.)
+pub const SECONDS_PER_WORK_UNIT: f64 = 4.44e-7;
 
 /// Work units of one spectral sample at one probe point besides its tracing: the contributions
 /// at every fidelity level, the conditioning terms, the closed-form references and the
-/// observable factor (about 15 µs on the Intel Xeon VM). Without it the cheapest library cases
-/// (two slits or two point sources, a few units of tracing per point) were estimated 11–18
-/// times below their run (young_paper, incoherent_sources; `benches/preflight.rs`).
-pub const SAMPLE_UNITS: f64 = 25.0;
+/// observable factor (about 9 µs on the Intel Xeon VM), for a point whose paths are solved
+/// (a point observer); a far-field point of plane waves costs [`WALKED_SAMPLE_SCALE`] of it.
+/// Without it the cheapest library cases (two slits or two point sources, a few units of
+/// tracing per point) were estimated 11–18 times below their run (young_paper,
+/// incoherent_sources; `benches/preflight.rs`).
+pub const SAMPLE_UNITS: f64 = 20.0;
+
+/// The per-sample terms ([`SAMPLE_UNITS`], [`FURTHER_SAMPLE_UNITS`]) of a far-field point of
+/// plane waves (walked) relative to a solved point's: one reference and no detection geometry
+/// per sample (fitted with [`SECONDS_PER_WORK_UNIT`]).
+pub const WALKED_SAMPLE_SCALE: f64 = 0.8;
+
+/// Work units per discovery visit and per solved event of a point whose paths are solved (a
+/// point observer), relative to the walk's: the solver's Newton iterations per event (fitted
+/// with [`SECONDS_PER_WORK_UNIT`]; at 1, `michelson`, a point source over four surfaces, ran
+/// at 2.1 times its estimate in the slower series).
+pub const SOLVED_UNITS: f64 = 1.35;
 
 /// The cost of moving a point's traced arrivals to the next point's wavelength (the same
 /// scene, observer and budget: `trace_point` relabels every arrival instead of tracing), as a
@@ -171,10 +186,10 @@ pub const MOVED_TRACE: f64 = 0.15;
 
 /// Work units of each further spectral sample of a probe point besides its tracing: the
 /// contributions at every fidelity level and the closed-form references again, without the
-/// point's set-up (about 5 µs on the Intel Xeon VM: coherence_length, 129 samples per point,
+/// point's set-up (about 3 µs on the Intel Xeon VM: coherence_length, 129 samples per point,
 /// ran at 0.35 of its estimate when every sample counted [`SAMPLE_UNITS`];
 /// `benches/preflight.rs`).
-pub const FURTHER_SAMPLE_UNITS: f64 = 8.0;
+pub const FURTHER_SAMPLE_UNITS: f64 = 6.4;
 
 /// The reflected orders of the rungs of the bounce-convergence report of monochrome Airy cases
 /// (`convergence::convergence`), each traced at 2·orders − 1 internal reflections while that is
@@ -275,7 +290,7 @@ fn point_work(
         } else {
             PointWork {
                 linear: 0.0,
-                quadratic: rays * nodes + events,
+                quadratic: SOLVED_UNITS * (rays * nodes + events),
             }
         };
         let total = work.linear + work.quadratic;
@@ -390,7 +405,10 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
     }
     let sample_units = budgets
         .iter()
-        .map(|b| SAMPLE_UNITS + FURTHER_SAMPLE_UNITS * (b.3 - 1.0))
+        .map(|b| {
+            let scale = if b.1 { WALKED_SAMPLE_SCALE } else { 1.0 };
+            scale * (SAMPLE_UNITS + FURTHER_SAMPLE_UNITS * (b.3 - 1.0))
+        })
         .sum::<f64>();
     // The representative point: the largest budget, the centre among equals.
     let centre = points.len() / 2;

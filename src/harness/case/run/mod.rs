@@ -38,7 +38,8 @@ use arrivals::*;
 use budget::*;
 pub use budget::{
     CLOSED_TAIL_ORDERS, FURTHER_SAMPLE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, SAMPLE_UNITS,
-    SECONDS_PER_WORK_UNIT, WorkEstimate, preflight, work_estimate,
+    SECONDS_PER_WORK_UNIT, SOLVED_UNITS, WALKED_SAMPLE_SCALE, WorkEstimate, preflight,
+    work_estimate,
 };
 use convergence::*;
 pub use convergence::{convergence_traced, orders_within};
