@@ -375,9 +375,11 @@ pub fn s_direction(d_i: DVec3, normal: DVec3, fallback: DVec3) -> DVec3 {
     s_of_plane_of_incidence(d_i, normal).unwrap_or_else(|| s_at_normal_incidence(d_i, fallback))
 }
 
-/// The s vector of [`s_direction`] when the plane of incidence is defined (|d_i × N| > 1e-12),
-/// `None` at normal incidence, where only the fallback decides: what every ray of direction
-/// `d_i` shares at this interface, whatever its polarization frame.
+/// The s vector of [`s_direction`] when the plane of incidence is defined (|d_i × N| > 1e-12,
+/// tested on the square: no square root for the verdict), `None` at normal incidence, where
+/// only the fallback decides: what every ray of direction `d_i` shares at this interface,
+/// whatever its polarization frame.
+#[inline]
 pub(crate) fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
     let n_o = if d_i.dot(normal) < 0.0 {
         normal
@@ -387,7 +389,7 @@ pub(crate) fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3
     let c = d_i.cross(n_o);
     // Near normal incidence d_i × N has relative error ε/|d_i × N|: project out N again so s
     // stays ⟂ N and d_i to rounding (a no-op in exact arithmetic; tests/suite/interaction_props.rs).
-    (c.length() > 1e-12).then(|| (c - c.dot(n_o) * n_o).normalize())
+    (c.length_squared() > 1e-24).then(|| (c - c.dot(n_o) * n_o).normalize())
 }
 
 /// The s vector of [`s_direction`] at normal incidence: `fallback` projected perpendicular to

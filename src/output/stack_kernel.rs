@@ -502,21 +502,6 @@ fn start_of(g: [f64; 4]) -> f64 {
     }
 }
 
-/// [`fresnel::s_of_plane_of_incidence`] (the tracer's s vector) bit for bit where it is defined,
-/// its test |d_i × N| > 1e-12 made on the square (a verdict that could differ only within a
-/// rounding of |d_i × N| = 1e-12, while the kernel's rays have |d_i × N| = p/n_k with
-/// p ≥ 1e-9): one square root fewer per event.
-#[inline]
-fn s_of_plane_of_incidence(d_i: DVec3, normal: DVec3) -> Option<DVec3> {
-    let n_o = if d_i.dot(normal) < 0.0 {
-        normal
-    } else {
-        -normal
-    };
-    let c = d_i.cross(n_o);
-    (c.length_squared() > 1e-24).then(|| (c - c.dot(n_o) * n_o).normalize())
-}
-
 /// Complex `e · v`, as [`crate::optics::interaction`] forms it.
 fn dot_complex(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
@@ -913,7 +898,7 @@ impl StackKernel {
                         q2_2 / (ev.n2 * ev.n2)
                     };
                     let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
-                    let Some(sv) = s_of_plane_of_incidence(d_i, ev.normal) else {
+                    let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
                         return false;
                     };
                     let pick = |f: fresnel::FresnelCoefficients| {
