@@ -9,11 +9,12 @@
 //! - A wavelength sweep over one non-dispersive scene is traced once per worker and relabelled
 //!   (`Arrival::set_wavelength`): each point's traced values equal a run of that point alone.
 
+use crate::support::airy_plate::{plane_wave_film, specular_target};
 use fringe::harness::case::load;
 use fringe::harness::case::run;
 use fringe::optics::material::Medium;
 use fringe::scene::Scene;
-use fringe::scene::source::{Emitter, Polarization, Source};
+use fringe::scene::source::Polarization;
 use fringe::trace::path::{EnumerationLimits, Target};
 use fringe::trace::{self, TraceSettings};
 use glam::DVec3;
@@ -32,39 +33,15 @@ fn film_scene(
     transmitted: bool,
 ) -> (Scene, Target) {
     let m = |n: f64| Medium::constant("m", n);
-    let mut scene = Scene::new(m(n_above));
-    scene.add_plate(
-        "film",
-        DVec3::ZERO,
-        DVec3::Z,
-        thickness_m,
-        m(n_above),
-        m(n_film),
-        m(n_below),
-    );
-    let (s, c) = theta.sin_cos();
-    scene.sources.push(Source {
-        name: "beam".into(),
-        emitter: Emitter::PlaneWave {
-            direction: DVec3::new(s, 0.0, -c),
-            reference_point: DVec3::new(0.0, 0.0, 0.001),
-        },
-        polarization: pol,
-        intensity: 1.0,
-        coherence_group: 0,
-        coherence_length_m: f64::INFINITY,
-    });
+    let scene = plane_wave_film(theta, [m(n_above), m(n_film), m(n_below)], thickness_m, pol);
     let target = if transmitted {
-        let s3 = n_above * s / n_below;
+        let s3 = n_above * theta.sin() / n_below;
         Target::Direction {
             dir: DVec3::new(s3, 0.0, -(1.0 - s3 * s3).sqrt()),
             reference: DVec3::new(0.0, 0.0, -0.001),
         }
     } else {
-        Target::Direction {
-            dir: DVec3::new(s, 0.0, c),
-            reference: DVec3::new(0.0, 0.0, 0.001),
-        }
+        specular_target(theta)
     };
     (scene, target)
 }

@@ -84,13 +84,14 @@ pub(super) fn required_paths(case: &Case, built: &Built) -> Vec<Vec<crate::trace
 /// `tests/suite/truth_plates.rs`); the case is refused with that reason instead. (Other
 /// sequences that do not converge are, as before, taken as paths that do not exist.)
 pub(super) fn arrivals_at(
+    case: &Case,
     built: &Built,
     optics: &crate::scene::SceneOptics,
     target: &Target,
     observer: &Observer,
     st: &TraceSettings,
-    required: &[Vec<crate::trace::path::Event>],
 ) -> Result<Vec<Arrival>, String> {
+    let required = required_paths(case, built);
     let plan = trace::plan(&built.scene, optics, &probe_targets(target), &st.limits);
     let (mut arr, failed) = trace::arrivals(&built.scene, optics, &plan, target, st);
     if let Some(f) = failed.iter().find(|f| {

@@ -138,15 +138,8 @@ pub(super) fn convergence(
                 });
                 let arrivals = match within {
                     Some(arr) => arr,
-                    None => arrivals_at(
-                        &built,
-                        &optics,
-                        &target,
-                        &pt.observer,
-                        &st,
-                        &required_paths(case, &built),
-                    )
-                    .map_err(|e| case_err(case, "$.probe", e))?,
+                    None => arrivals_at(case, &built, &optics, &target, &pt.observer, &st)
+                        .map_err(|e| case_err(case, "$.probe", e))?,
                 };
                 let traced = factor * trace::intensity(&arrivals, Fidelity::Vector);
                 let exact =

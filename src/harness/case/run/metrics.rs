@@ -86,16 +86,8 @@ pub(super) fn traced_spacing(case: &Case, built: &Built) -> Result<(f64, f64), C
         position_m: p0.to_array(),
         looks_toward: *looks_toward,
     };
-    let required = required_paths(case, built);
-    let mut arr = arrivals_at(
-        built,
-        &optics,
-        &Target::Point(p0),
-        &observer,
-        &st,
-        &required,
-    )
-    .map_err(|e| case_err(case, "$.probe", e))?;
+    let mut arr = arrivals_at(case, built, &optics, &Target::Point(p0), &observer, &st)
+        .map_err(|e| case_err(case, "$.probe", e))?;
     let id = arr.first().map(|x| x.vector.coherence_id);
     arr.retain(|x| Some(x.vector.coherence_id) == id);
     arr.sort_by(|x, y| y.vector.intensity().total_cmp(&x.vector.intensity()));

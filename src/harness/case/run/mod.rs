@@ -392,34 +392,27 @@ pub(super) fn trace_point(
             }
         } else {
             traced.key = None;
-            let mut arr = arrivals_at(
-                &built,
-                &optics,
-                &target,
-                &pt.observer,
-                &st,
-                &required_paths(case, &built),
-            )
-            .map_err(|e| {
-                // A reference that refuses this point itself (frustrated total reflection,
-                // an unresolvable grazing entry) names the scene's own limit: its reason wins.
-                let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
-                    matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
-                        .then(|| {
-                            reference::value(
-                                &r.model,
-                                &built,
-                                &target,
-                                lambda_m,
-                                spec.trace.spreading,
-                            )
-                            .err()
-                        })
-                        .flatten()
-                        .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
-                });
-                refused.unwrap_or_else(|| case_err(case, "$.probe", e))
-            })?;
+            let mut arr =
+                arrivals_at(case, &built, &optics, &target, &pt.observer, &st).map_err(|e| {
+                    // A reference that refuses this point itself (frustrated total reflection,
+                    // an unresolvable grazing entry) names the scene's own limit: its reason wins.
+                    let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
+                        matches!(r.model, ReferenceModel::TwoBeamPlate { .. })
+                            .then(|| {
+                                reference::value(
+                                    &r.model,
+                                    &built,
+                                    &target,
+                                    lambda_m,
+                                    spec.trace.spreading,
+                                )
+                                .err()
+                            })
+                            .flatten()
+                            .map(|m| case_err(case, &format!("$.references[{ri}].model"), m))
+                    });
+                    refused.unwrap_or_else(|| case_err(case, "$.probe", e))
+                })?;
             // Beyond the cap: the orders past the traced ones, closed exactly.
             if b.closed {
                 trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
