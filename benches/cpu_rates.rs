@@ -8,6 +8,7 @@
 //!
 //! ```text
 //! cargo bench -p fringe-benches --bench cpu_rates -- accumulate # 1 M contributions, 16 k points, 4 groups (and 16 k, L2-resident)
+//! cargo bench -p fringe-benches --bench cpu_rates -- accumulate-2t # only the 2-thread columns, 50 reps
 //! cargo bench -p fringe-benches --bench cpu_rates -- spectrum # traced Airy spectrum, 401 λ
 //! ```
 //!
@@ -54,19 +55,28 @@ fn cpu_seconds() -> f64 {
     ns as f64 * 1e-9
 }
 
-/// Run `work` `reps` times and print the wall and CPU rates of `items` items per repetition.
+/// Run `work` `reps` times and print the wall and CPU rates of `items` items per repetition:
+/// the mean over all repetitions (total wall and CPU time), and the wall rate of the fastest
+/// and of the median repetition (the statistics `examples/accumulate_numpy.py` prints for numpy:
+/// compare best with best, median with median).
 fn measure(what: &str, reps: usize, items: usize, mut work: impl FnMut()) {
     work(); // warm up (allocations, pools, caches)
+    let mut per_rep = Vec::with_capacity(reps);
     let (w0, c0) = (Instant::now(), cpu_seconds());
     for _ in 0..reps {
+        let r0 = Instant::now();
         work();
+        per_rep.push(r0.elapsed().as_secs_f64());
     }
     let (wall, cpu) = (w0.elapsed().as_secs_f64(), cpu_seconds() - c0);
+    per_rep.sort_by(f64::total_cmp);
     let n = (reps * items) as f64;
     println!(
-        "{what}: {reps} reps, {wall:.3} s wall, {cpu:.3} CPU-s: {:.2} M/s wall, {:.2} M per CPU-second",
+        "{what}: {reps} reps, {wall:.3} s wall, {cpu:.3} CPU-s: {:.2} M/s wall, {:.2} M per CPU-second; best rep {:.2} M/s, median rep {:.2} M/s",
         n / wall / 1e6,
-        n / cpu / 1e6
+        n / cpu / 1e6,
+        items as f64 / per_rep[0] / 1e6,
+        items as f64 / per_rep[reps / 2] / 1e6,
     );
 }
 
@@ -157,6 +167,34 @@ fn accumulate() {
     measure("accumulate T1M_P16k_G4 stream read 2t", 20, t, || {
         black_box(pool.install(|| accumulation_data::stream_sum_par(black_box(words))));
     });
+}
+
+/// Only the 2-thread column rows of [`accumulate`] (the issue's comparison with numpy), with
+/// more repetitions: what `examples/accumulate_ratio.py` runs between numpy's runs.
+fn accumulate_2t() {
+    let (t, p, g) = (1usize << 20, 1usize << 14, 4u64);
+    let (d, offsets) = data(t, p, g, 1);
+    let cols = ContributionColumns::from(&d[..]);
+    drop(d);
+    let mut out = vec![0.0; p];
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("rayon pool");
+    for (name, s) in [
+        ("plain", Summation::Plain),
+        ("compensated", Summation::Compensated),
+    ] {
+        measure(
+            &format!("accumulate T1M_P16k_G4 columns 2t {name}"),
+            50,
+            t,
+            || {
+                pool.install(|| accumulate_columns_par(black_box(&cols), &offsets, s, &mut out));
+                black_box(&out);
+            },
+        );
+    }
 }
 
 /// Settings for the tail bound ε = 1e-12 of a plate of index `n` at `theta` (as the bench).
@@ -391,10 +429,11 @@ fn spectrum_dispersive() {
 fn main() {
     match std::env::args().nth(1).as_deref() {
         Some("accumulate") => accumulate(),
+        Some("accumulate-2t") => accumulate_2t(),
         Some("spectrum") => spectrum(),
         Some("bk7") => spectrum_dispersive(),
         _ => {
-            eprintln!("usage: cpu_rates accumulate|spectrum|bk7");
+            eprintln!("usage: cpu_rates accumulate|accumulate-2t|spectrum|bk7");
             std::process::exit(2);
         }
     }

@@ -11,7 +11,7 @@ complex 3-vectors E·phasor summed per group, and the squared lengths |E_g|² su
 
 Throw-away measurement script, not used by the build or the tests. Run:
 
-    python3 examples/accumulate_numpy.py            # best of 7 runs: wall and CPU time
+    python3 examples/accumulate_numpy.py            # best and median of 7 runs: wall and CPU time
 
 It also checks itself against a direct per-point loop on the first 64 points. A second line
 times the same work on input grouped into runs of one (point, id) (`add.reduceat`): the fair
@@ -103,18 +103,25 @@ def main():
         ("bincount", lambda: accumulate(point, ids, phase, field)),
         ("reduceat on grouped input", lambda: accumulate_grouped(*runs)),
     ]:
-        best, best_cpu = float("inf"), float("inf")
-        for _ in range(7):
-            t0, c0 = time.perf_counter(), time.process_time()
-            work()
-            best = min(best, time.perf_counter() - t0)
-            best_cpu = min(best_cpu, time.process_time() - c0)
+        best, median, best_cpu = timings(work)
         print(
             f"numpy {np.__version__} {name}: T={T} P={P} G={G}: best {best * 1e3:.1f} ms wall "
-            f"({T / best / 1e6:.1f} M contributions/s), best {best_cpu * 1e3:.1f} ms CPU "
+            f"({T / best / 1e6:.1f} M contributions/s), median {median * 1e3:.1f} ms "
+            f"({T / median / 1e6:.1f} M/s), best {best_cpu * 1e3:.1f} ms CPU "
             f"({T / best_cpu / 1e6:.1f} M contributions per CPU-second)"
         )
 
+
+def timings(work, runs=7):
+    """Best and median wall seconds and best CPU seconds of `runs` calls of `work`."""
+    wall, cpu = [], []
+    for _ in range(runs):
+        t0, c0 = time.perf_counter(), time.process_time()
+        work()
+        wall.append(time.perf_counter() - t0)
+        cpu.append(time.process_time() - c0)
+    wall.sort()
+    return wall[0], wall[len(wall) // 2], min(cpu)
 
 if __name__ == "__main__":
     main()
