@@ -169,12 +169,38 @@ fn accumulate() {
     });
 }
 
+/// A copy of `src` in memory asked to be backed by 2 MiB pages (`madvise(MADV_HUGEPAGE)` on the
+/// 2 MiB-aligned interior of the allocation before it is first written), as numpy asks for its
+/// own arrays of 4 MiB and more: with transparent huge pages in `madvise` mode (this VM) the
+/// kernel then maps those parts with 2 MiB pages.
+fn on_huge_pages<T: Copy>(src: &[T]) -> Vec<T> {
+    const HUGE: usize = 2 << 20;
+    let mut v: Vec<T> = Vec::with_capacity(src.len());
+    let start = v.as_ptr() as usize;
+    let end = start + std::mem::size_of_val(src);
+    let (a, b) = (start.next_multiple_of(HUGE), end / HUGE * HUGE);
+    if b > a {
+        // SAFETY: [a, b) lies inside the allocation just made (nothing else refers to it);
+        // madvise only changes how its pages are backed, never their contents.
+        let rc = unsafe { libc::madvise(a as *mut libc::c_void, b - a, libc::MADV_HUGEPAGE) };
+        assert_eq!(rc, 0, "madvise(MADV_HUGEPAGE)");
+    }
+    v.extend_from_slice(src);
+    v
+}
+
 /// Only the 2-thread column rows of [`accumulate`] (the comparison with numpy), with
-/// more repetitions: what `examples/accumulate_ratio.py` runs between numpy's runs.
+/// more repetitions, the columns on ordinary pages and on 2 MiB pages ([`on_huge_pages`], as
+/// numpy's own arrays): what `examples/accumulate_ratio.py` runs between numpy's runs.
 fn accumulate_2t() {
     let (t, p, g) = (1usize << 20, 1usize << 14, 4u64);
     let (d, offsets) = data(t, p, g, 1);
     let cols = ContributionColumns::from(&d[..]);
+    let huge = ContributionColumns {
+        coherence_ids: on_huge_pages(&cols.coherence_ids),
+        phase_cycles: on_huge_pages(&cols.phase_cycles),
+        fields: on_huge_pages(&cols.fields),
+    };
     drop(d);
     let mut out = vec![0.0; p];
     let pool = rayon::ThreadPoolBuilder::new()
@@ -185,15 +211,17 @@ fn accumulate_2t() {
         ("plain", Summation::Plain),
         ("compensated", Summation::Compensated),
     ] {
-        measure(
-            &format!("accumulate T1M_P16k_G4 columns 2t {name}"),
-            50,
-            t,
-            || {
-                pool.install(|| accumulate_columns_par(black_box(&cols), &offsets, s, &mut out));
-                black_box(&out);
-            },
-        );
+        for (pages, c) in [("", &cols), (" (2 MiB pages)", &huge)] {
+            measure(
+                &format!("accumulate T1M_P16k_G4 columns 2t {name}{pages}"),
+                50,
+                t,
+                || {
+                    pool.install(|| accumulate_columns_par(black_box(c), &offsets, s, &mut out));
+                    black_box(&out);
+                },
+            );
+        }
     }
 }
 
