@@ -336,6 +336,37 @@ impl Traced {
     }
 }
 
+/// Whether no index of `scene` depends on the wavelength (every medium, the ambient and each
+/// surface's, has a constant index): its optics at one wavelength are then its optics at any
+/// other with the wavelength relabelled ([`relabelled_optics`]).
+pub fn dispersionless(scene: &crate::scene::Scene) -> bool {
+    use crate::optics::material::{Dispersion, Medium};
+    use crate::scene::SurfaceKind;
+    let constant = |m: &Medium| matches!(m.dispersion, Dispersion::Constant { .. });
+    constant(&scene.ambient)
+        && scene.surfaces.iter().all(|s| match &s.kind {
+            SurfaceKind::Interface { front, back, .. } => constant(front) && constant(back),
+            SurfaceKind::Splitter { medium, .. } => constant(medium),
+            SurfaceKind::IdealMirror { .. } | SurfaceKind::Opaque { .. } => true,
+        })
+}
+
+/// A scene's optics ([`crate::scene::Scene::optics`]) at `lambda_m` from its optics at another
+/// wavelength, for a [`dispersionless`] scene: the same indices and layers, with the wavelength
+/// they are taken at set to `lambda_m` (what `Scene::optics(lambda_m)` gives, field for field,
+/// without forming the layers again).
+pub fn relabelled_optics(
+    optics: &crate::scene::SceneOptics,
+    lambda_m: f64,
+) -> crate::scene::SceneOptics {
+    let mut o = optics.clone();
+    o.lambda_m = lambda_m;
+    for layer in o.layers.iter_mut().flatten().flatten() {
+        layer.lambda_m = lambda_m;
+    }
+    o
+}
+
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
 /// spectral sample traced, one at a time (a point's arrivals over a long spectrum are never
 /// held together). `traced` holds the arrivals last traced (by this point or a previous one)
@@ -359,11 +390,21 @@ pub(super) fn trace_point(
     }) {
         traced.key = None;
     }
+    // The optics of a scene whose indices do not depend on the wavelength are formed once and
+    // relabelled to each sample's wavelength (`relabelled_optics`: the same values).
+    let constant_optics = dispersionless(&built.scene);
+    let mut first_optics: Option<crate::scene::SceneOptics> = None;
     for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
-        let optics = built
-            .scene
-            .optics(lambda_m)
-            .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+        let optics = match &first_optics {
+            Some(o) => relabelled_optics(o, lambda_m),
+            None => built
+                .scene
+                .optics(lambda_m)
+                .map_err(|e| case_err(case, "$.light", e.to_string()))?,
+        };
+        if constant_optics && first_optics.is_none() {
+            first_optics = Some(optics.clone());
+        }
         let Some(target) = build::propagating_target(&pt.observer, &built, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?
         else {
