@@ -6,9 +6,11 @@
 //! the next sample's wavelength where a new trace would give the same ones (`Traced`: a
 //! spectrum, or a wavelength sweep over one scene, through non-dispersive media), with the
 //! wavelength-free parts of the conditioning terms formed once per trace
-//! ([`conditioning::RoundingTerms`], [`conditioning::direction_offsets`]); the detection
+//! ([`conditioning::RoundingTerms`], [`conditioning::direction_offsets`]) and a
+//! non-dispersive scene's optics formed once per point ([`relabelled_optics`]); the detection
 //! floors and the convergence report read the arrivals the run traced
-//! ([`orders_within`]: a rung within a point's budget is its traced orders, cut).
+//! ([`orders_within`]: a rung within a point's budget is its traced orders, cut; a rung
+//! beyond it is cut from one trace of the report's deepest rung).
 
 use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
