@@ -296,9 +296,10 @@ pub(super) struct Sample<'a> {
     /// previous point's, at this sample's wavelength, [`Traced`]); what a visitor derives from
     /// the arrivals' paths alone stays valid while this is `false`.
     pub retraced: bool,
-    /// The scene's optics at `lambda_m` (built once per sample, for the tracer and the
+    /// The scene's optics at `lambda_m` (formed once per sample, or relabelled from the previous
+    /// sample's for a [`dispersionless`] scene; for the tracer and the
     /// conditioning terms alike).
-    pub optics: crate::scene::SceneOptics,
+    pub optics: &'a crate::scene::SceneOptics,
 }
 
 /// What a traced sample's arrivals depend on besides the wavelength they carry: the scene,
@@ -362,11 +363,16 @@ pub fn relabelled_optics(
     lambda_m: f64,
 ) -> crate::scene::SceneOptics {
     let mut o = optics.clone();
-    o.lambda_m = lambda_m;
-    for layer in o.layers.iter_mut().flatten().flatten() {
+    relabel_optics(&mut o, lambda_m);
+    o
+}
+
+/// [`relabelled_optics`] in place: the wavelength the optics are taken at set to `lambda_m`.
+fn relabel_optics(optics: &mut crate::scene::SceneOptics, lambda_m: f64) {
+    optics.lambda_m = lambda_m;
+    for layer in optics.layers.iter_mut().flatten().flatten() {
         layer.lambda_m = lambda_m;
     }
-    o
 }
 
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
@@ -393,20 +399,24 @@ pub(super) fn trace_point(
         traced.key = None;
     }
     // The optics of a scene whose indices do not depend on the wavelength are formed once and
-    // relabelled to each sample's wavelength (`relabelled_optics`: the same values).
+    // relabelled in place to each sample's wavelength (`relabelled_optics`: the same values).
     let constant_optics = dispersionless(&built.scene);
-    let mut first_optics: Option<crate::scene::SceneOptics> = None;
+    let mut held: Option<crate::scene::SceneOptics> = None;
     for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
-        let optics = match &first_optics {
-            Some(o) => relabelled_optics(o, lambda_m),
-            None => built
-                .scene
-                .optics(lambda_m)
-                .map_err(|e| case_err(case, "$.light", e.to_string()))?,
-        };
-        if constant_optics && first_optics.is_none() {
-            first_optics = Some(optics.clone());
+        match &mut held {
+            Some(o) if constant_optics => relabel_optics(o, lambda_m),
+            _ => {
+                held = Some(
+                    built
+                        .scene
+                        .optics(lambda_m)
+                        .map_err(|e| case_err(case, "$.light", e.to_string()))?,
+                )
+            }
         }
+        let Some(optics) = held.as_ref() else {
+            unreachable!("the optics are formed above")
+        };
         let Some(target) = build::propagating_target(&pt.observer, &built, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?
         else {
@@ -436,7 +446,7 @@ pub(super) fn trace_point(
         } else {
             traced.key = None;
             let mut arr =
-                arrivals_at(case, &built, &optics, &target, &pt.observer, &st).map_err(|e| {
+                arrivals_at(case, &built, optics, &target, &pt.observer, &st).map_err(|e| {
                     // A reference that refuses this point itself (frustrated total reflection,
                     // an unresolvable grazing entry) names the scene's own limit: its reason wins.
                     let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
@@ -458,7 +468,7 @@ pub(super) fn trace_point(
                 })?;
             // Beyond the cap: the orders past the traced ones, closed exactly.
             if b.closed {
-                trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
+                trace::tail::close(&built.scene, optics, &mut arr).map_err(|e| {
                     case_err(
                         case,
                         "$.trace.airy_tail_epsilon",
@@ -613,7 +623,7 @@ fn run_point(
             let rounding = match rounding_terms {
                 Some(t) => t.intensity_rounding(arr, &vector, lambda),
                 None => {
-                    conditioning::intensity_rounding(arr, r, &vector, lambda, &built.scene, &optics)
+                    conditioning::intensity_rounding(arr, r, &vector, lambda, &built.scene, optics)
                 }
             };
             out.rounding += w * factor * rounding;
@@ -630,7 +640,7 @@ fn run_point(
                         arr,
                         &vector,
                         &built.scene,
-                        &optics,
+                        optics,
                     )
                     + vector_intensity.unwrap_or(0.0)
                         * reference::observable_factor_representation(&pt.observer, built, lambda));
