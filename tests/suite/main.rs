@@ -13,6 +13,7 @@ mod beyond_critical;
 mod case_library;
 mod case_parser_props;
 mod case_runs;
+mod check_shared_work;
 mod cli;
 mod closed_form_precision;
 mod colour;

@@ -63,6 +63,28 @@ pub fn orders_within(
     )
 }
 
+/// A convergence point's rung-independent part, formed at its first rung: the scene, the
+/// optics, the target, the observable factor, the closed form and the film (the same values
+/// at every rung), and the arrivals of its deepest trace.
+struct PointRungs {
+    built: Built,
+    lambda: f64,
+    optics: crate::scene::SceneOptics,
+    target: Target,
+    factor: f64,
+    exact: f64,
+    film: (crate::harness::analytic::plate::Film, f64),
+    /// The arrivals traced for the report at the deepest rung (internal reflections, arrivals).
+    deepest: Option<(usize, Vec<Arrival>)>,
+}
+
+/// A convergence point before its first rung, with no propagating wave, or formed.
+enum PointState {
+    Fresh,
+    Dark,
+    Formed(Box<PointRungs>),
+}
+
 /// For cases with an Airy reference: the traced error against the number of reflected orders,
 /// with the geometric-tail bound. `kept` holds, for the points [`convergence_points`] names,
 /// the internal reflections and arrivals of the case run where it kept them: a rung within
@@ -71,6 +93,22 @@ pub(super) fn convergence(
     case: &Case,
     points: &[ProbePoint],
     kept: Vec<Option<(usize, Vec<Arrival>)>>,
+) -> Result<Vec<ConvergenceRow>, CaseError> {
+    convergence_with(case, points, kept, true)
+}
+
+/// [`convergence`]; `deep`: a rung beyond a point's kept arrivals traces the deepest rung of
+/// the report once and sums every rung from it ([`orders_within`]: the same arrivals, bit for
+/// bit, as a trace of that rung), instead of tracing each rung on its own.
+///
+/// Each point's scene, optics, target, observable factor, closed form and film are formed at
+/// its first rung, in the order a rung forms them (so an error is the one a rung reports), and
+/// reused at the others: they do not depend on the rung.
+fn convergence_with(
+    case: &Case,
+    points: &[ProbePoint],
+    kept: Vec<Option<(usize, Vec<Arrival>)>>,
+    deep: bool,
 ) -> Result<Vec<ConvergenceRow>, CaseError> {
     let spec = &case.spec;
     let Some((ri, film)) = airy_reference(case) else {
@@ -103,6 +141,13 @@ pub(super) fn convergence(
         .into_iter()
         .max()
         .unwrap_or(0);
+    // The deepest rung the report can reach (the loop below stops there at the latest).
+    let deepest = super::budget::CONVERGENCE_ORDERS
+        .iter()
+        .map(|o| 2 * o - 1)
+        .take_while(|&internal| internal <= budget.max(1))
+        .last();
+    let mut states: Vec<PointState> = (0..points.len()).map(|_| PointState::Fresh).collect();
     for orders in super::budget::CONVERGENCE_ORDERS {
         let internal = 2 * orders - 1;
         if internal > budget.max(1) {
@@ -111,50 +156,88 @@ pub(super) fn convergence(
         let res: Vec<(f64, f64)> = points
             .par_iter()
             .zip(&kept)
-            .map(|(pt, k)| -> Result<(f64, f64), CaseError> {
-                let built = build::build_scene(&spec.scene, &pt.overrides)
-                    .map_err(|e| case_err(case, "$.scene", e))?;
-                let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
-                let optics = built
-                    .scene
-                    .optics(lambda)
-                    .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-                let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
-                    .map_err(|e| case_err(case, "$.probe", e))?
-                else {
-                    return Ok((0.0, 0.0)); // no transmitted wave: T = 0 traced and exact
-                };
-                let st = settings(case, &built, internal);
-                let factor = reference::observable_factor(&pt.observer, &built, &target, lambda)
-                    .map_err(|e| case_err(case, "$.probe", e))?;
-                let within = k.as_ref().and_then(|(traced, arr)| {
-                    orders_within(
-                        arr,
-                        *traced,
-                        internal,
-                        st.limits.max_events,
-                        optics.ambient_index,
-                    )
-                });
-                let arrivals = match within {
-                    Some(arr) => arr,
-                    None => arrivals_at(case, &built, &optics, &target, &pt.observer, &st)
-                        .map_err(|e| case_err(case, "$.probe", e))?,
-                };
-                let traced = factor * trace::intensity(&arrivals, Fidelity::Vector);
-                let exact =
-                    reference::value(&spec.references[ri].model, &built, &target, lambda, false)
+            .zip(&mut states)
+            .map(|((pt, k), state)| -> Result<(f64, f64), CaseError> {
+                // The rung-independent part: formed at the first rung, in a rung's order.
+                let (mut formed, arrivals) = match std::mem::replace(state, PointState::Dark) {
+                    PointState::Dark => return Ok((0.0, 0.0)),
+                    PointState::Formed(p) => (p, None),
+                    PointState::Fresh => {
+                        let built = build::build_scene(&spec.scene, &pt.overrides)
+                            .map_err(|e| case_err(case, "$.scene", e))?;
+                        let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
+                        let optics = built
+                            .scene
+                            .optics(lambda)
+                            .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+                        let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
+                            .map_err(|e| case_err(case, "$.probe", e))?
+                        else {
+                            return Ok((0.0, 0.0)); // no transmitted wave: T = 0 traced and exact
+                        };
+                        let factor =
+                            reference::observable_factor(&pt.observer, &built, &target, lambda)
+                                .map_err(|e| case_err(case, "$.probe", e))?;
+                        let st = settings(case, &built, internal);
+                        let mut deepest_traced = None;
+                        let arrivals = rung_arrivals(
+                            case,
+                            (&built, &optics, &target, &pt.observer),
+                            k.as_ref(),
+                            &mut deepest_traced,
+                            (internal, &st),
+                            deep.then_some(deepest).flatten(),
+                        )?;
+                        let exact = reference::value(
+                            &spec.references[ri].model,
+                            &built,
+                            &target,
+                            lambda,
+                            false,
+                        )
                         .map_err(|e| case_err(case, &format!("$.references[{ri}].model"), e))?;
-                let (f, cos1) = reference::airy_film(&built, &film, lambda)
-                    .map_err(|e| case_err(case, "$.references", e))?;
+                        let film = reference::airy_film(&built, &film, lambda)
+                            .map_err(|e| case_err(case, "$.references", e))?;
+                        let p = PointRungs {
+                            built,
+                            lambda,
+                            optics,
+                            target,
+                            factor,
+                            exact,
+                            film,
+                            deepest: deepest_traced,
+                        };
+                        (Box::new(p), Some(arrivals))
+                    }
+                };
+                let arrivals = match arrivals {
+                    Some(a) => a,
+                    None => {
+                        let p = &mut *formed;
+                        let st = settings(case, &p.built, internal);
+                        rung_arrivals(
+                            case,
+                            (&p.built, &p.optics, &p.target, &pt.observer),
+                            k.as_ref(),
+                            &mut p.deepest,
+                            (internal, &st),
+                            deep.then_some(deepest).flatten(),
+                        )?
+                    }
+                };
+                let traced = formed.factor * trace::intensity(&arrivals, Fidelity::Vector);
+                let exact = formed.exact;
+                let (f, cos1) = formed.film;
                 let tau = [
                     crate::harness::analytic::plate::Pol::S,
                     crate::harness::analytic::plate::Pol::P,
                 ]
                 .into_iter()
-                .map(|p| f.tail_bound(cos1, lambda, p, orders))
+                .map(|p| f.tail_bound(cos1, formed.lambda, p, orders))
                 .fold(0.0f64, f64::max);
                 let bound = 2.0 * exact.sqrt() * tau + tau * tau;
+                *state = PointState::Formed(formed);
                 Ok(((traced - exact).abs(), bound))
             })
             .collect::<Vec<_>>()
@@ -175,9 +258,52 @@ pub(super) fn convergence(
     Ok(rows)
 }
 
+/// The arrivals of one rung (`internal` internal reflections, settings `st`) at a point: the
+/// kept arrivals of the case run cut to the rung where they hold it ([`orders_within`]), else
+/// those of the point's deepest trace (`deepest`), else a trace: of the rung `deep` (then kept
+/// in `deepest` and cut) where given, else of the rung itself. A deep trace that fails, or that
+/// cannot be cut, gives way to the rung's own trace, so a rung reports the error its own trace
+/// gives.
+fn rung_arrivals(
+    case: &Case,
+    (built, optics, target, observer): (&Built, &crate::scene::SceneOptics, &Target, &Observer),
+    kept: Option<&(usize, Vec<Arrival>)>,
+    deepest: &mut Option<(usize, Vec<Arrival>)>,
+    (internal, st): (usize, &TraceSettings),
+    deep: Option<usize>,
+) -> Result<Vec<Arrival>, CaseError> {
+    let cut = |(traced, arr): &(usize, Vec<Arrival>)| {
+        orders_within(
+            arr,
+            *traced,
+            internal,
+            st.limits.max_events,
+            optics.ambient_index,
+        )
+    };
+    if let Some(arr) = kept.and_then(cut) {
+        return Ok(arr);
+    }
+    if let Some(arr) = deepest.as_ref().and_then(cut) {
+        return Ok(arr);
+    }
+    if let Some(d) = deep.filter(|&d| d > internal && deepest.is_none()) {
+        let deep_st = settings(case, built, d);
+        if let Ok(arr) = arrivals_at(case, built, optics, target, observer, &deep_st) {
+            let traced = (d, arr);
+            let within = cut(&traced);
+            *deepest = Some(traced);
+            if let Some(arr) = within {
+                return Ok(arr);
+            }
+        }
+    }
+    arrivals_at(case, built, optics, target, observer, st).map_err(|e| case_err(case, "$.probe", e))
+}
+
 /// The convergence report of `case` with every rung traced (`convergence` without kept
 /// arrivals): what a case run's report ([`CaseResult::convergence`]) equals bit for bit.
 pub fn convergence_traced(case: &Case) -> Result<Vec<ConvergenceRow>, CaseError> {
     let points = build::probe_points(&case.spec.probe);
-    convergence(case, &points, Vec::new())
+    convergence_with(case, &points, Vec::new(), false)
 }

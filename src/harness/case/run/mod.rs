@@ -6,9 +6,11 @@
 //! the next sample's wavelength where a new trace would give the same ones (`Traced`: a
 //! spectrum, or a wavelength sweep over one scene, through non-dispersive media), with the
 //! wavelength-free parts of the conditioning terms formed once per trace
-//! ([`conditioning::RoundingTerms`], [`conditioning::direction_offsets`]); the detection
+//! ([`conditioning::RoundingTerms`], [`conditioning::direction_offsets`]) and a
+//! non-dispersive scene's optics formed once per point ([`relabelled_optics`]); the detection
 //! floors and the convergence report read the arrivals the run traced
-//! ([`orders_within`]: a rung within a point's budget is its traced orders, cut).
+//! ([`orders_within`]: a rung within a point's budget is its traced orders, cut; a rung
+//! beyond it is cut from one trace of the report's deepest rung).
 
 use super::build::{self, Built, Overrides, ProbePoint};
 use super::load::{Case, CaseError};
@@ -294,9 +296,10 @@ pub(super) struct Sample<'a> {
     /// previous point's, at this sample's wavelength, [`Traced`]); what a visitor derives from
     /// the arrivals' paths alone stays valid while this is `false`.
     pub retraced: bool,
-    /// The scene's optics at `lambda_m` (built once per sample, for the tracer and the
+    /// The scene's optics at `lambda_m` (formed once per sample, or relabelled from the previous
+    /// sample's for a [`dispersionless`] scene; for the tracer and the
     /// conditioning terms alike).
-    pub optics: crate::scene::SceneOptics,
+    pub optics: &'a crate::scene::SceneOptics,
 }
 
 /// What a traced sample's arrivals depend on besides the wavelength they carry: the scene,
@@ -336,6 +339,42 @@ impl Traced {
     }
 }
 
+/// Whether no index of `scene` depends on the wavelength (every medium, the ambient and each
+/// surface's, has a constant index): its optics at one wavelength are then its optics at any
+/// other with the wavelength relabelled ([`relabelled_optics`]).
+pub fn dispersionless(scene: &crate::scene::Scene) -> bool {
+    use crate::optics::material::{Dispersion, Medium};
+    use crate::scene::SurfaceKind;
+    let constant = |m: &Medium| matches!(m.dispersion, Dispersion::Constant { .. });
+    constant(&scene.ambient)
+        && scene.surfaces.iter().all(|s| match &s.kind {
+            SurfaceKind::Interface { front, back, .. } => constant(front) && constant(back),
+            SurfaceKind::Splitter { medium, .. } => constant(medium),
+            SurfaceKind::IdealMirror { .. } | SurfaceKind::Opaque { .. } => true,
+        })
+}
+
+/// A scene's optics ([`crate::scene::Scene::optics`]) at `lambda_m` from its optics at another
+/// wavelength, for a [`dispersionless`] scene: the same indices and layers, with the wavelength
+/// they are taken at set to `lambda_m` (what `Scene::optics(lambda_m)` gives, field for field,
+/// without forming the layers again).
+pub fn relabelled_optics(
+    optics: &crate::scene::SceneOptics,
+    lambda_m: f64,
+) -> crate::scene::SceneOptics {
+    let mut o = optics.clone();
+    relabel_optics(&mut o, lambda_m);
+    o
+}
+
+/// [`relabelled_optics`] in place: the wavelength the optics are taken at set to `lambda_m`.
+fn relabel_optics(optics: &mut crate::scene::SceneOptics, lambda_m: f64) {
+    optics.lambda_m = lambda_m;
+    for layer in optics.layers.iter_mut().flatten().flatten() {
+        layer.lambda_m = lambda_m;
+    }
+}
+
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
 /// spectral sample traced, one at a time (a point's arrivals over a long spectrum are never
 /// held together). `traced` holds the arrivals last traced (by this point or a previous one)
@@ -359,11 +398,25 @@ pub(super) fn trace_point(
     }) {
         traced.key = None;
     }
+    // The optics of a scene whose indices do not depend on the wavelength are formed once and
+    // relabelled in place to each sample's wavelength (`relabelled_optics`: the same values).
+    let constant_optics = dispersionless(&built.scene);
+    let mut held: Option<crate::scene::SceneOptics> = None;
     for (index, &(lambda_m, weight)) in spectrum.iter().enumerate() {
-        let optics = built
-            .scene
-            .optics(lambda_m)
-            .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+        match &mut held {
+            Some(o) if constant_optics => relabel_optics(o, lambda_m),
+            _ => {
+                held = Some(
+                    built
+                        .scene
+                        .optics(lambda_m)
+                        .map_err(|e| case_err(case, "$.light", e.to_string()))?,
+                )
+            }
+        }
+        let Some(optics) = held.as_ref() else {
+            unreachable!("the optics are formed above")
+        };
         let Some(target) = build::propagating_target(&pt.observer, &built, lambda_m)
             .map_err(|e| case_err(case, "$.probe", e))?
         else {
@@ -393,7 +446,7 @@ pub(super) fn trace_point(
         } else {
             traced.key = None;
             let mut arr =
-                arrivals_at(case, &built, &optics, &target, &pt.observer, &st).map_err(|e| {
+                arrivals_at(case, &built, optics, &target, &pt.observer, &st).map_err(|e| {
                     // A reference that refuses this point itself (frustrated total reflection,
                     // an unresolvable grazing entry) names the scene's own limit: its reason wins.
                     let refused = spec.references.iter().enumerate().find_map(|(ri, r)| {
@@ -415,7 +468,7 @@ pub(super) fn trace_point(
                 })?;
             // Beyond the cap: the orders past the traced ones, closed exactly.
             if b.closed {
-                trace::tail::close(&built.scene, &optics, &mut arr).map_err(|e| {
+                trace::tail::close(&built.scene, optics, &mut arr).map_err(|e| {
                     case_err(
                         case,
                         "$.trace.airy_tail_epsilon",
@@ -570,7 +623,7 @@ fn run_point(
             let rounding = match rounding_terms {
                 Some(t) => t.intensity_rounding(arr, &vector, lambda),
                 None => {
-                    conditioning::intensity_rounding(arr, r, &vector, lambda, &built.scene, &optics)
+                    conditioning::intensity_rounding(arr, r, &vector, lambda, &built.scene, optics)
                 }
             };
             out.rounding += w * factor * rounding;
@@ -587,7 +640,7 @@ fn run_point(
                         arr,
                         &vector,
                         &built.scene,
-                        &optics,
+                        optics,
                     )
                     + vector_intensity.unwrap_or(0.0)
                         * reference::observable_factor_representation(&pt.observer, built, lambda));
