@@ -158,10 +158,12 @@ pub const MAX_PATH_EVENTS: f64 = 8.0e8;
 /// average of 3), minimising the largest of the series' spreads max/min of measured / estimate
 /// (a soft maximum, Adam from 10 random starts), and rounded; this rate centres the two idle
 /// series' extremes on 1. Result: 0.65–1.16 (spread 1.78) and 0.81–1.53 (1.88) in the idle
-/// series, 1.01–1.79 (1.78) in the loaded one; the plate_two_beam family at 1 and 2 plates and
-/// the Airy plates set the low end, `lloyd_mirror` and `michelson` (a point source over one or
-/// four surfaces, whose solver costs more per candidate than any count here tells) the high
-/// end. A free estimate per scene could do no better than 1.31 in the two idle series: they
+/// series, 1.01–1.79 (1.78) in the loaded one, and 0.64–1.17 (1.83) in a fourth series on
+/// these constants the fit did not see (load average 2.5–3.1, a fast phase of the VM); every
+/// run of every scene within 2×. The plate_two_beam family at 1 and 2 plates and
+/// the Airy plates set the low end, `lloyd_mirror`, `michelson` (a point source over one or
+/// four surfaces, whose solver costs more per candidate than any count here tells) and
+/// `thin_film_on_substrate` the high end. A free estimate per scene could do no better than 1.31 in the two idle series: they
 /// differ by 1.0× (the Airy walk at m = 2000) to 1.75× (`fresnel_rhomb`, a 40-µs run) per
 /// scene. Before (one per-sample term, the solved events at 1.35 units, the rate 4.44e-7):
 /// 0.52–1.75 and 0.65–1.92, spreads 3.4 and 3.0.
