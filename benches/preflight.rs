@@ -100,7 +100,7 @@ fn main() {
         "rate: {SECONDS_PER_WORK_UNIT:.2e} CPU-s per work unit; cap {MAX_PATH_EVENTS:.0e} units"
     );
     println!(
-        "| scene | work units (∝ m + ∝ m² + per sample) | estimate (CPU-s) | runs | measured CPU-s per run (spread) | wall s per run | measured / estimate (spread) |"
+        "| scene | work units (∝ m + ∝ m² + per point and sample) | estimate (CPU-s) | runs | measured CPU-s per run (spread) | wall s per run | measured / estimate (spread) |"
     );
     println!("| --- | --- | --- | --- | --- | --- | --- |");
     for (name, file, doc) in scenes() {

@@ -7,8 +7,9 @@
 use crate::support::stacked_plates::stacked_plates;
 use fringe::harness::case::load::{self, Case};
 use fringe::harness::case::run::{
-    self, FURTHER_SAMPLE_UNITS, MOVED_TRACE, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT,
-    WALKED_SAMPLE_SCALE, WorkEstimate,
+    self, DEPTH_SQUARE_UNITS, MOVED_TRACE, NODE_UNITS, PointKind, SAMPLE_UNITS,
+    SECONDS_PER_WORK_UNIT, TAIL_RULE_UNITS, TRACE_UNITS, VISIT_UNITS, WALKED_EVENT_UNITS,
+    WALKED_TRACE_EVENT_SHARE, WorkCounts, WorkEstimate,
 };
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -39,108 +40,123 @@ fn estimate(c: &Case) -> WorkEstimate {
     run::work_estimate(c).expect("accepted")
 }
 
-/// The benched scenes, each with the mean CPU-seconds (all threads) of its run recorded by
-/// `cargo bench -p fringe-benches --bench preflight` on the project's 2-core Intel Xeon VM,
-/// idle, 29 November 2026, in two series: the fourteenth session's merge, and the fifteenth
-/// session's merge 1.2–1.4× slower in a slower phase of the VM (short scenes averaged over runs
-/// of at least 0.5 CPU-s in all; `fresnel_rhomb`, a 40-µs run, from its mean ratio). The
-/// estimate (work units × `SECONDS_PER_WORK_UNIT`) must be within 2× of each run in both
-/// series: a term dropped or double-counted (the per-sample terms, the walk's per-event passes,
-/// the solved points' units, the stacked plates' tree) moves some scene out. Scenes span 4
-/// decades of work, so one rate fitting them all is the claim.
-#[test]
-fn the_estimate_is_within_2x_of_the_calibration_runs() {
-    let scenes: Vec<(&str, Case, [f64; 2])> = vec![
+/// The benched scenes (`benches/preflight.rs`), each with the mean CPU-seconds (all threads) of
+/// its run recorded by `cargo bench -p fringe-benches --bench preflight` on the project's 2-core
+/// Intel Xeon VM, 29 November 2026, in four series: the fourteenth session's merge (idle); the
+/// fifteenth session's merge, 1.2–1.4× slower in a slower phase of the VM (idle); the sixteenth
+/// session's preflight branch on the first fit of this model, under a load average of 2.5–3.5
+/// from other builds (the constants were fitted to these three); and the same branch on the
+/// final constants (load average 2.5–3.1, in a faster phase of the VM), the check on data the
+/// fit did not see. The tracing code they measured is the same. Short scenes are averaged over
+/// runs of at least 0.5 CPU-s in all; `fresnel_rhomb`, a 40-µs run, from its mean ratio.
+fn benched() -> Vec<(&'static str, Case, [f64; 4])> {
+    vec![
         (
             "bk7_dispersion",
             case("bk7_dispersion", &|_| {}),
-            [0.0643, 0.1013],
+            [0.0643, 0.1013, 0.1045, 0.0688],
         ),
         (
             "brewster_extinction",
             case("brewster_extinction", &|_| {}),
-            [0.0136, 0.0201],
+            [0.0136, 0.0201, 0.0215, 0.0131],
         ),
         (
             "coherence_length",
             case("coherence_length", &|_| {}),
-            [0.2091, 0.2558],
+            [0.2091, 0.2558, 0.2525, 0.1830],
         ),
         (
             "coherence_length_paper_rule",
             case("coherence_length_paper_rule", &|_| {}),
-            [0.011, 0.016],
+            [0.011, 0.016, 0.0122, 0.0107],
         ),
         (
             "fresnel_rhomb",
             case("fresnel_rhomb", &|_| {}),
-            [3.744e-05, 6.564e-05],
+            [3.744e-05, 6.564e-05, 4.98e-05, 4.47e-05],
         ),
         (
             "incoherent_sources",
             case("incoherent_sources", &|_| {}),
-            [0.0027, 0.0038],
+            [0.0027, 0.0038, 0.0040, 0.0022],
         ),
         (
             "lloyd_mirror",
             case("lloyd_mirror", &|_| {}),
-            [0.0089, 0.0119],
+            [0.0089, 0.0119, 0.0140, 0.0076],
         ),
-        ("michelson", case("michelson", &|_| {}), [0.0361, 0.052]),
+        (
+            "michelson",
+            case("michelson", &|_| {}),
+            [0.0361, 0.052, 0.0592, 0.0355],
+        ),
         (
             "plate_airy_p",
             case("plate_airy_p", &|_| {}),
-            [0.0746, 0.1096],
+            [0.0746, 0.1096, 0.1186, 0.0797],
         ),
         (
             "plate_airy_s",
             case("plate_airy_s", &|_| {}),
-            [0.0878, 0.121],
+            [0.0878, 0.121, 0.1237, 0.0899],
         ),
         (
             "plate_airy_wavelength",
             case("plate_airy_wavelength", &|_| {}),
-            [0.0184, 0.029],
+            [0.0184, 0.029, 0.0310, 0.0190],
         ),
         (
             "plate_two_beam_paper",
             case("plate_two_beam_paper", &|_| {}),
-            [0.0238, 0.029],
+            [0.0238, 0.029, 0.0358, 0.0228],
         ),
         (
             "plate_two_beam_unpolarized",
             case("plate_two_beam_unpolarized", &|_| {}),
-            [0.0263, 0.0359],
+            [0.0263, 0.0359, 0.0389, 0.0257],
         ),
         (
             "thin_film_on_substrate",
             case("thin_film_on_substrate", &|_| {}),
-            [0.068, 0.0889],
+            [0.068, 0.0889, 0.1025, 0.0711],
         ),
         (
             "tir_interference",
             case("tir_interference", &|_| {}),
-            [0.0125, 0.0157],
+            [0.0125, 0.0157, 0.0184, 0.0120],
         ),
         (
             "wedge_fizeau",
             case("wedge_fizeau", &|_| {}),
-            [0.0139, 0.0169],
+            [0.0139, 0.0169, 0.0210, 0.0132],
         ),
         (
             "young_paper",
             case("young_paper", &|_| {}),
-            [0.0054, 0.0066],
+            [0.0054, 0.0066, 0.0076, 0.0040],
         ),
-        ("1 stacked plate(s)", stacked(1, &|_| {}), [0.0246, 0.034]),
-        ("2 stacked plate(s)", stacked(2, &|_| {}), [1.397, 1.776]),
-        ("3 stacked plate(s)", stacked(3, &|_| {}), [95.99, 116.6]),
+        (
+            "1 stacked plate(s)",
+            stacked(1, &|_| {}),
+            [0.0246, 0.034, 0.0367, 0.0242],
+        ),
+        (
+            "2 stacked plate(s)",
+            stacked(2, &|_| {}),
+            [1.397, 1.776, 2.3238, 1.3977],
+        ),
+        (
+            "3 stacked plate(s)",
+            stacked(3, &|_| {}),
+            [95.99, 116.6, 117.1572, 89.3746],
+        ),
         (
             "plate_two_beam_paper, m = 40",
             stacked(1, &|d| {
                 d["trace"] = json!({ "max_internal_reflections": 40 })
             }),
-            [0.8462, 1.001],
+            [0.8462, 1.001, 0.9919, 0.7160],
         ),
         (
             "plate_airy_s, m = 2000, 200 angles",
@@ -148,10 +164,19 @@ fn the_estimate_is_within_2x_of_the_calibration_runs() {
                 d["trace"] = json!({ "max_internal_reflections": 2000 });
                 d["probe"]["sweep"]["count"] = json!(200);
             }),
-            [34.93, 35.21],
+            [34.93, 35.21, 35.8844, 27.4433],
         ),
-    ];
-    for (name, c, measured) in scenes {
+    ]
+}
+
+/// The estimate (work units × `SECONDS_PER_WORK_UNIT`) is within 2× of each recorded run of
+/// every benched scene in all four series ([`benched`]): a term dropped or double-counted (the
+/// per-sample and per-trace terms, the tail rule's set-up, the solver's Σ depth², the walk's
+/// per-event passes, the stacked plates' tree) moves some scene out. Scenes span 6 decades of
+/// work, so one rate fitting them all is the claim.
+#[test]
+fn the_estimate_is_within_2x_of_the_calibration_runs() {
+    for (name, c, measured) in benched() {
         let seconds = estimate(&c).units() * SECONDS_PER_WORK_UNIT;
         for m in measured {
             let ratio = m / seconds;
@@ -196,11 +221,83 @@ fn the_estimate_orders_the_benched_scenes_and_refuses_four_and_six_plates() {
     }
 }
 
+/// Each term of the model priced alone, work units (the parts of `WorkCounts::units`).
+fn terms(c: &WorkCounts) -> Vec<(&'static str, f64)> {
+    let w = PointKind::Walked as usize;
+    let per_kind = |k: [f64; 3], n: [f64; 3]| (0..3).map(|i| k[i] * n[i]).sum::<f64>();
+    vec![
+        ("samples", SAMPLE_UNITS * c.samples.iter().sum::<f64>()),
+        (
+            "traces (solved, point sources)",
+            TRACE_UNITS[0] * c.traces[0],
+        ),
+        ("traces (solved, plane waves)", TRACE_UNITS[1] * c.traces[1]),
+        ("traces (walked)", TRACE_UNITS[2] * c.traces[2]),
+        (
+            "tail-rule points",
+            TAIL_RULE_UNITS * c.tail_rule_points.iter().sum::<f64>(),
+        ),
+        ("visits", per_kind(VISIT_UNITS, c.visits)),
+        (
+            "depth squares",
+            per_kind(DEPTH_SQUARE_UNITS, c.depth_squares),
+        ),
+        ("nodes", per_kind(NODE_UNITS, c.nodes)),
+        (
+            "walked events",
+            WALKED_EVENT_UNITS * (c.sample_events[w] + WALKED_TRACE_EVENT_SHARE * c.events[w]),
+        ),
+    ]
+}
+
+/// Every term of the model carries a benched scene: it is at least the given share of that
+/// scene's estimate, and for all but the tail rule's set-up the scene's recorded runs would
+/// leave 2× of an estimate without it (a term dropped fails here, and the 2× test with it).
+/// The terms sum to the estimate.
+#[test]
+fn every_term_carries_a_benched_scene() {
+    let scenes = benched();
+    let carried = [
+        ("samples", "coherence_length", 0.8),
+        ("traces (solved, point sources)", "young_paper", 0.6),
+        ("traces (solved, plane waves)", "tir_interference", 0.8),
+        ("traces (walked)", "coherence_length_paper_rule", 0.4),
+        ("tail-rule points", "plate_airy_wavelength", 0.3),
+        ("visits", "3 stacked plate(s)", 0.75),
+        ("depth squares", "plate_two_beam_paper, m = 40", 0.4),
+        ("nodes", "bk7_dispersion", 0.5),
+        ("walked events", "plate_airy_s, m = 2000, 200 angles", 0.9),
+    ];
+    for (scene, c, measured) in &scenes {
+        let e = estimate(c);
+        let sum: f64 = terms(&e.counts).iter().map(|t| t.1).sum();
+        assert!(
+            (sum - e.units()).abs() < 1e-9 * e.units(),
+            "{scene}: {sum} vs {e:?}"
+        );
+        for (term, carrier, least) in carried {
+            if *scene != carrier {
+                continue;
+            }
+            let part = terms(&e.counts).iter().find(|t| t.0 == term).unwrap().1;
+            let share = part / e.units();
+            assert!(share >= least, "{term} in {scene}: share {share:.2}");
+            if term != "tail-rule points" {
+                let without = (e.units() - part) * SECONDS_PER_WORK_UNIT;
+                let slowest = measured.iter().copied().fold(0.0, f64::max);
+                assert!(
+                    slowest / without > 2.0,
+                    "{term} in {scene}: {slowest} CPU-s is within 2x of {without:.4} without it"
+                );
+            }
+        }
+    }
+}
+
 /// A spectrum through media whose indices do not depend on the wavelength is traced once per
-/// point (`run::trace_point` moves the arrivals to the other samples), so the walk's part does
-/// not grow with the samples; the case run's passes over the walked paths and the per-sample
-/// term (`SAMPLE_UNITS` for a point's first sample, `FURTHER_SAMPLE_UNITS` for each further
-/// one) grows exactly with them.
+/// point (`run::trace_point` moves the arrivals to the other samples), so the walk's nodes and
+/// the per-trace terms do not grow with the samples; the case run's passes over the walked
+/// paths and the per-sample term grow exactly with them.
 #[test]
 fn a_non_dispersive_spectrum_is_traced_once_and_every_sample_counts() {
     let with = |samples: usize| {
@@ -209,23 +306,25 @@ fn a_non_dispersive_spectrum_is_traced_once_and_every_sample_counts() {
         }))
     };
     let (a, b) = (with(129), with(33));
+    let w = PointKind::Walked as usize;
     assert_eq!(a.linear_units, b.linear_units);
+    assert_eq!(a.counts.events, b.counts.events);
+    assert_eq!(a.counts.traces, b.counts.traces);
     let r = 129.0 / 33.0;
-    assert!((a.quadratic_units / b.quadratic_units - r).abs() < 1e-12 * r);
-    // 400 angles.
-    // A far-field point of a plane wave: the walked points' per-sample terms.
-    let per_point = |samples: f64| {
-        WALKED_SAMPLE_SCALE * (SAMPLE_UNITS + FURTHER_SAMPLE_UNITS * (samples - 1.0))
-    };
-    assert!((a.sample_units - 400.0 * per_point(129.0)).abs() < 1e-9 * a.sample_units);
-    assert!((b.sample_units - 400.0 * per_point(33.0)).abs() < 1e-9 * b.sample_units);
+    let ratio = a.counts.sample_events[w] / b.counts.sample_events[w];
+    assert!((ratio - r).abs() < 1e-12 * r);
+    // 400 angles, each traced once: its samples and its trace.
+    for (e, samples) in [(a, 129.0), (b, 33.0)] {
+        let fixed = 400.0 * (SAMPLE_UNITS * samples + TRACE_UNITS[w]);
+        assert!((e.sample_units - fixed).abs() < 1e-9 * fixed, "{e:?}");
+    }
 }
 
 /// A sweep of the wavelength alone keeps the scene, observer and budget of the point before,
 /// so `run::trace_point` moves that point's arrivals instead of tracing (plate_airy_wavelength):
 /// the tracing is counted once, each further point `MOVED_TRACE` of it, while the per-point
-/// terms (the case run's passes over the walked paths, the per-sample term) grow with the
-/// points.
+/// terms (the case run's passes over the walked paths, the per-sample and tail-rule terms) grow
+/// with the points.
 #[test]
 fn a_wavelength_sweep_is_traced_once() {
     let with = |count: usize| {
@@ -234,10 +333,15 @@ fn a_wavelength_sweep_is_traced_once() {
         }))
     };
     let (a, b) = (with(301), with(31));
+    let w = PointKind::Walked as usize;
     let traced = (1.0 + 300.0 * MOVED_TRACE) / (1.0 + 30.0 * MOVED_TRACE);
     assert!((a.linear_units / b.linear_units - traced).abs() < 1e-12 * traced);
-    assert_eq!(a.sample_units, WALKED_SAMPLE_SCALE * SAMPLE_UNITS * 301.0);
-    assert_eq!(b.sample_units, WALKED_SAMPLE_SCALE * SAMPLE_UNITS * 31.0);
+    for (e, n) in [(a, 301.0), (b, 31.0)] {
+        let traces = 1.0 + (n - 1.0) * MOVED_TRACE;
+        assert!((e.counts.traces[w] - traces).abs() < 1e-12 * traces);
+        let fixed = n * (SAMPLE_UNITS + TAIL_RULE_UNITS) + TRACE_UNITS[w] * traces;
+        assert!((e.sample_units - fixed).abs() < 1e-9 * fixed, "{e:?}");
+    }
     // A thickness sweep changes the scene at every point: traced at each.
     let thick = |count: usize| {
         estimate(&case("plate_airy_wavelength", &|d| {
@@ -266,17 +370,25 @@ fn a_dispersive_spectrum_is_traced_per_sample() {
     for (part, x, y) in [
         ("linear", a.linear_units, b.linear_units),
         ("quadratic", a.quadratic_units, b.quadratic_units),
+        ("per point and sample", a.sample_units, b.sample_units),
     ] {
         assert!((x / y - r).abs() < 1e-12 * r, "{part}: {}", x / y);
     }
-    assert!(a.sample_units > 3.0 * b.sample_units, "{a:?} {b:?}");
 }
 
-/// The per-sample term alone prices two slits (young_paper: no surfaces, so a few units of
-/// tracing per point): it is `SAMPLE_UNITS` × 401 points, and the tracing is below it.
+/// Two slits (young_paper: no surfaces, so two nodes of discovery per point) are priced by
+/// their 401 samples and traces alone, and two plane waves solved onto a point
+/// (tir_interference) by their traces: each kind of point has its own price per trace.
 #[test]
-fn the_per_sample_term_counts_every_point_of_a_scene_without_surfaces() {
+fn the_per_point_terms_price_the_scenes_without_a_tree() {
     let e = estimate(&case("young_paper", &|_| {}));
-    assert_eq!(e.sample_units, SAMPLE_UNITS * 401.0);
+    let sp = PointKind::SolvedPointSource as usize;
+    let fixed = (SAMPLE_UNITS + TRACE_UNITS[sp]) * 401.0;
+    assert!((e.sample_units - fixed).abs() < 1e-12 * fixed, "{e:?}");
     assert!(e.linear_units + e.quadratic_units < e.sample_units, "{e:?}");
+    let t = estimate(&case("tir_interference", &|_| {}));
+    let pw = PointKind::SolvedPlaneWave as usize;
+    assert_eq!(t.counts.traces[pw], 401.0);
+    let fixed = (SAMPLE_UNITS + TRACE_UNITS[pw]) * 401.0;
+    assert!((t.sample_units - fixed).abs() < 1e-12 * fixed, "{t:?}");
 }

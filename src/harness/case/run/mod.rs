@@ -39,8 +39,9 @@ pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
 pub use budget::{
-    CLOSED_TAIL_ORDERS, FURTHER_SAMPLE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, SAMPLE_UNITS,
-    SECONDS_PER_WORK_UNIT, SOLVED_UNITS, WALKED_SAMPLE_SCALE, WorkEstimate, preflight,
+    CLOSED_TAIL_ORDERS, DEPTH_SQUARE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, NODE_UNITS, PointKind,
+    SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, TAIL_RULE_UNITS, TRACE_UNITS, VISIT_UNITS,
+    WALKED_EVENT_UNITS, WALKED_TRACE_EVENT_SHARE, WorkCounts, WorkEstimate, preflight,
     work_estimate,
 };
 use convergence::*;
