@@ -166,7 +166,10 @@ pub const MAX_PATH_EVENTS: f64 = 8.0e8;
 /// `thin_film_on_substrate` the high end. A free estimate per scene could do no better than 1.31 in the two idle series: they
 /// differ by 1.0× (the Airy walk at m = 2000) to 1.75× (`fresnel_rhomb`, a 40-µs run) per
 /// scene. Before (one per-sample term, the solved events at 1.35 units, the rate 4.44e-7):
-/// 0.52–1.75 and 0.65–1.92, spreads 3.4 and 3.0.
+/// 0.52–1.75 and 0.65–1.92, spreads 3.4 and 3.0. After the merge with the case run that cuts
+/// the Airy convergence report's rungs from one deep trace (counted so since: one trace at the
+/// deepest rung per point), two idle series in a fast phase of the VM: 0.70–1.25 and 0.59–1.13
+/// (one plate, `plate_two_beam_paper` low; `lloyd_mirror`, `incoherent_sources` high).
 pub const SECONDS_PER_WORK_UNIT: f64 = 4.44e-7;
 
 /// The cost of moving a point's traced arrivals to the next point's wavelength (the same
@@ -546,20 +549,25 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
         // convergence::convergence: at every `stride`-th point (at most 24), the rungs
         // 2·orders − 1 of its ladder up to the largest budget of those points; a rung within
         // the point's own budget is summed from the arrivals its run traced
-        // (`run::orders_within`), a larger one is traced, scaled like a point of that budget.
+        // (`run::orders_within`); a point with a rung beyond its budget traces the deepest
+        // rung once, scaled like a point of that budget, and sums every such rung from it
+        // (one sample's passes per rung).
         let stride = points.len().div_ceil(24).max(1);
         let sampled: Vec<(usize, PointKind)> =
             budgets.iter().step_by(stride).map(|b| (b.0, b.1)).collect();
         let top = sampled.iter().map(|b| b.0).max().unwrap_or(0).max(1);
-        for orders in CONVERGENCE_ORDERS {
-            let internal = 2 * orders - 1;
-            if internal > top {
-                break;
+        let rungs: Vec<usize> = CONVERGENCE_ORDERS
+            .iter()
+            .map(|o| 2 * o - 1)
+            .take_while(|&internal| internal <= top)
+            .collect();
+        let deepest = rungs.last().copied().unwrap_or(0);
+        for &(own, k) in &sampled {
+            if deepest > own {
+                add(deepest, k, 1.0, 0.0);
             }
-            for &(own, k) in &sampled {
-                if internal > own {
-                    add(internal, k, 1.0, 1.0);
-                }
+            for &internal in rungs.iter().filter(|&&internal| internal > own) {
+                add(internal, k, 0.0, 1.0);
             }
         }
     }
