@@ -206,8 +206,8 @@ pub enum PointKind {
 /// the traces of the point for what is traced and times its spectral samples for what every
 /// sample repeats. A point's traces: 1 for a spectrum through non-dispersive media (traced once
 /// and moved to the other wavelengths), [`MOVED_TRACE`] for a point that moves the previous
-/// point's arrivals, else its samples; the bounce-convergence report's rungs beyond a point's
-/// budget add one trace of one sample at the rung's budget.
+/// point's arrivals, else its samples; a point of the bounce-convergence report with rungs
+/// beyond its budget adds one trace at the deepest rung and one sample's passes per such rung.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WorkCounts {
     /// Spectral samples of every probe point.
