@@ -75,12 +75,7 @@ pub(super) fn budget(case: &Case, built: &Built, lambda_m: f64) -> Result<Budget
     // Only where no index depends on the wavelength: the budget is taken at one wavelength of
     // the spectrum, and a dispersive film evanescent there may carry a propagating wave at
     // another, whose orders one internal reflection would cut silently.
-    let dispersionless = built.media.values().all(|m| {
-        matches!(
-            m.dispersion,
-            crate::optics::material::Dispersion::Constant { .. }
-        )
-    });
+    let dispersionless = super::dispersionless(&built.scene);
     let top = built
         .surface(&format!("{film}.top"))
         .map_err(|e| case_err(case, "$.references", e))?;
@@ -486,12 +481,7 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
         let internal = internal_reflections(case, &built, spectrum[spectrum.len() / 2].0)?;
         // `trace_point` traces a spectrum through media whose indices do not depend on the
         // wavelength once, and moves the arrivals to every other sample (`at_wavelength`).
-        let dispersionless = built.media.values().all(|m| {
-            matches!(
-                m.dispersion,
-                crate::optics::material::Dispersion::Constant { .. }
-            )
-        });
+        let dispersionless = super::dispersionless(&built.scene);
         // `trace_point` also moves the previous point's arrivals to this one where the scene,
         // observer and budget are the same (a sweep of the wavelength only): no new trace,
         // [`MOVED_TRACE`] of one.
