@@ -436,8 +436,10 @@ impl Accumulator {
 /// first appearance exactly as `GroupTable::group` one contribution at a time would. Eight ids
 /// at a time: one 8-lane compare against each of the first four groups' ids gives the offsets
 /// of a chunk whose ids all belong to those groups (the common case, about one vector
-/// instruction per contribution); a chunk with id 0, a new id or a fifth or later group goes
-/// through `GroupTable::group` lane by lane, in order.
+/// instruction per contribution); id-0 lanes get [`INCOHERENT_OFFSET`] by mask, and the other
+/// lanes (a new id, or a fifth or later group) one `GroupTable::group` call per distinct id,
+/// lowest lane first, whose offset goes to all the lanes of that id by one more compare (the
+/// first chunk of a point, where every id is new: one call per group, not per lane).
 ///
 /// # Safety
 /// The CPU must have AVX2 and AVX-512F.
@@ -469,15 +471,25 @@ unsafe fn group_offsets_512(table: &mut super::GroupTable, ids: &[u64], offset: 
             let k2 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[2] as i64));
             let k3 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[3] as i64));
             let kz = _mm512_cmpeq_epi64_mask(id, zero);
-            if (k0 | k1 | k2 | k3) & !kz == 0xFF {
-                let b = SUM_BYTES as i64;
-                let mut o = _mm512_maskz_mov_epi64(k1, _mm512_set1_epi64(b));
-                o = _mm512_mask_mov_epi64(o, k2, _mm512_set1_epi64(2 * b));
-                o = _mm512_mask_mov_epi64(o, k3, _mm512_set1_epi64(3 * b));
-                _mm512_storeu_si512(offset.as_mut_ptr().add(j).cast(), o);
-            } else {
-                lane_by_lane(table, j..j + 8, offset);
+            let b = SUM_BYTES as i64;
+            let mut o = _mm512_maskz_mov_epi64(k1, _mm512_set1_epi64(b));
+            o = _mm512_mask_mov_epi64(o, k2, _mm512_set1_epi64(2 * b));
+            o = _mm512_mask_mov_epi64(o, k3, _mm512_set1_epi64(3 * b));
+            // Lanes of neither id 0 nor one of the first four groups (a new id, or a fifth and
+            // later group): one `GroupTable::group` call per distinct such id, lowest lane
+            // first (so new groups are created in order of first appearance), its offset
+            // given to every lane of that id at once. None of these ids is in `first` (else
+            // its lanes would have matched), so every lane of the id is among them.
+            let mut rest = !((k0 | k1 | k2 | k3) & !kz | kz);
+            while rest != 0 {
+                let id_l = ids[j + rest.trailing_zeros() as usize];
+                let g = table.group(id_l);
+                let same = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(id_l as i64));
+                o = _mm512_mask_mov_epi64(o, same, _mm512_set1_epi64(b * g as i64));
+                rest &= !same;
             }
+            o = _mm512_mask_mov_epi64(o, kz, _mm512_set1_epi64(INCOHERENT_OFFSET as i64));
+            _mm512_storeu_si512(offset.as_mut_ptr().add(j).cast(), o);
             j += 8;
         }
     }
