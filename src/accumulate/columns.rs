@@ -597,10 +597,11 @@ unsafe fn add_one_256<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
 }
 
 /// [`add_one_256`] with the six field components (x, y, z; re, im) in lanes 0..6 of one
-/// 8-lane register: the same operations lane by lane, so the same bits. Lanes 6 and 7 of the
-/// product are zero, so the group sum is loaded and stored as its whole 64-byte line (`s` and
-/// its padding; `c` and its padding), padding unchanged: a plain aligned store that the next
-/// contribution of the group can load without a masked-store forwarding stall.
+/// 8-lane register: the same operations lane by lane, so the same bits. The group sum is loaded
+/// and stored as its whole 64-byte line (`s` and its padding; `c` and its padding; lanes 6 and
+/// 7 of the product, ±0 or NaN, go only to the padding, which nothing reads): a plain aligned
+/// store that the next contribution of the group can load without a masked-store forwarding
+/// stall.
 ///
 /// # Safety
 /// The CPU must have AVX-512F.
@@ -625,8 +626,10 @@ unsafe fn add_one_512<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
             neg_re,
         ));
         // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
-        // Lanes 6, 7 forced to +0 (whatever `co`, `si`), so the padding lanes stay unchanged.
-        let p = _mm512_maskz_add_pd(SIX, _mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
+        // Lanes 6, 7: ±0 for finite `co`, `si` (NaN for a non-finite phase, whose sum is NaN
+        // anyway); they only reach the padding, which nothing reads. No mask here: a masked
+        // add costs one more shuffle-port operation (`vexpandpd`) per contribution.
+        let p = _mm512_add_pd(_mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
         let sp = std::ptr::from_mut(sum).cast::<f64>();
         let s = _mm512_load_pd(sp);
         if COMP {
