@@ -14,8 +14,8 @@
 //! find the group of a contribution by a compare against the ids of the first four groups of
 //! the point (the AVX2 kernel one 4-lane compare per contribution; the AVX-512F kernel, before
 //! the sums, four 8-lane compares per eight contributions that give the byte offset of each
-//! one's group sum; `GroupTable::group` of `mod.rs`, lane by lane, only for id 0, a new id or
-//! a fifth and later group), and form `E·e^{i2πc}` and the TwoSum update with the operations
+//! one's group sum, id 0 by mask; `GroupTable::group` of `mod.rs` once per distinct new id or
+//! fifth and later group of the eight), and form `E·e^{i2πc}` and the TwoSum update with the operations
 //! and the operand order of `GroupTable::add_field` (no FMA, no reassociation), each group's
 //! contributions in input order: in a 4-lane (x, y) and a 2-lane (z)
 //! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
@@ -94,6 +94,45 @@
 //! what 10–12 outstanding line fills per core allow at DRAM latency for 64 bytes a
 //! contribution; the fields prefetched two blocks ahead, or also into L2 four to eight blocks
 //! ahead, and the buffers on 2 MB pages were within the noise there too.
+//!
+//! Sixteenth session (29 November 2026, 18:55–19:12 UTC, the VM otherwise idle but for the
+//! lead's editing, load average 1.2–2.2; no hardware counters in this VM, so `perf record`
+//! with the CPU clock only). The profile of `cpu_rates accumulate-2t` (1 M case) before: 68 %
+//! in the kernel, 18 % in `group_offsets_512`'s lane-by-lane path, 4 % in
+//! `Accumulator::intensity`. With 64 contributions a point (16 k points), the first chunk of
+//! eight of every point has only new ids (`first` is empty), and with random ids of four groups
+//! the second often has one too: each such chunk went through `GroupTable::group` lane by lane,
+//! eight data-dependent branches on random ids. Now one call per distinct new id of the chunk
+//! (its offset to all its lanes by one compare): the path fell from 18 % to 0.4 % of the
+//! samples. The L2-resident rows did not show it (1 thread plain best rep 236/229 M/s before,
+//! 227/232 after, in the first two interleaved runs: their 16 k
+//! contributions repeat 1280 times, so the branch predictor learns the ids; the 1 M rows do
+//! not repeat within 64 MiB), the 1 M rows did: interleaved, three `cpu_rates accumulate` runs
+//! each (best rep M/s), before → after both changes of this session: 1 thread plain 126/162/168 → 220/230/225, 2 threads
+//! plain 276/253/343 → 434/337/446, 2 threads compensated 201/186/277 → 342/257/236; stream
+//! read 2t 604–674 in both. Second, `add_one_512`'s product without the masked add (LLVM
+//! lowered `maskz_add` to an add and a `vexpandpd`, one more shuffle-port operation a
+//! contribution; lanes 6, 7 reach only the padding): L2-resident 1 thread plain, best of four
+//! interleaved runs, 232 → 260 M/s, compensated 177 → 190 (medians within the noise).
+//!
+//! Issue #14's comparison (`CPU_RATES=… python3 examples/accumulate_ratio.py 3`, four
+//! alternations of the bench binary before and after, 12 rounds each, 19:11 UTC, load
+//! 1.3–1.4; numpy 7.7–11.9 M/s best in this series): 2 threads plain before 229–332 M/s best,
+//! 218–305 median, ratio best/best 22–37× (8 of 12 rounds ≥ 25×), median/median 20–29× (10 of
+//! 12); after 296–429 best, 250–375 median, best/best 28.5–44× (12 of 12), median/median 26–39×
+//! (12 of 12); compensated after 200–346 best, 19–39× (best/best). The 2-thread kernel now
+//! runs at about 2/3 of the 2-thread streaming read (604–674 M/s in the same runs).
+//!
+//! Not kept (measured in the same session, interleaved): the columns on 2 MiB pages in the
+//! library (`madvise(MADV_HUGEPAGE)` in `ContributionColumns::with_capacity`, checked to take
+//! effect: `AnonHugePages` doubled): five rounds each of `accumulate-2t`, 2 threads plain best
+//! 386/334/323/327/288 (4 KiB pages) against 368/274/350/305/320 (2 MiB), no gain above the
+//! noise, so the bench's own 2 MiB-page rows stay as the only huge-page measurement; the
+//! fields prefetched two blocks ahead instead of one (six rounds, 2 threads plain best 287–357
+//! against 309–348 M/s); and the first four groups' sums held in registers through the block
+//! (one pass per group over a 64-bit mask of its contributions, no store and reload of the sum
+//! between two contributions, the next block's fields prefetched at the start of the sums):
+//! slower, 1 thread plain on the 1 M case 86–114 against 119–205 M/s (mean), L2-resident no faster.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
@@ -436,8 +475,10 @@ impl Accumulator {
 /// first appearance exactly as `GroupTable::group` one contribution at a time would. Eight ids
 /// at a time: one 8-lane compare against each of the first four groups' ids gives the offsets
 /// of a chunk whose ids all belong to those groups (the common case, about one vector
-/// instruction per contribution); a chunk with id 0, a new id or a fifth or later group goes
-/// through `GroupTable::group` lane by lane, in order.
+/// instruction per contribution); id-0 lanes get [`INCOHERENT_OFFSET`] by mask, and the other
+/// lanes (a new id, or a fifth or later group) one `GroupTable::group` call per distinct id,
+/// lowest lane first, whose offset goes to all the lanes of that id by one more compare (the
+/// first chunk of a point, where every id is new: one call per group, not per lane).
 ///
 /// # Safety
 /// The CPU must have AVX2 and AVX-512F.
@@ -469,15 +510,25 @@ unsafe fn group_offsets_512(table: &mut super::GroupTable, ids: &[u64], offset: 
             let k2 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[2] as i64));
             let k3 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[3] as i64));
             let kz = _mm512_cmpeq_epi64_mask(id, zero);
-            if (k0 | k1 | k2 | k3) & !kz == 0xFF {
-                let b = SUM_BYTES as i64;
-                let mut o = _mm512_maskz_mov_epi64(k1, _mm512_set1_epi64(b));
-                o = _mm512_mask_mov_epi64(o, k2, _mm512_set1_epi64(2 * b));
-                o = _mm512_mask_mov_epi64(o, k3, _mm512_set1_epi64(3 * b));
-                _mm512_storeu_si512(offset.as_mut_ptr().add(j).cast(), o);
-            } else {
-                lane_by_lane(table, j..j + 8, offset);
+            let b = SUM_BYTES as i64;
+            let mut o = _mm512_maskz_mov_epi64(k1, _mm512_set1_epi64(b));
+            o = _mm512_mask_mov_epi64(o, k2, _mm512_set1_epi64(2 * b));
+            o = _mm512_mask_mov_epi64(o, k3, _mm512_set1_epi64(3 * b));
+            // Lanes of neither id 0 nor one of the first four groups (a new id, or a fifth and
+            // later group): one `GroupTable::group` call per distinct such id, lowest lane
+            // first (so new groups are created in order of first appearance), its offset
+            // given to every lane of that id at once. None of these ids is in `first` (else
+            // its lanes would have matched), so every lane of the id is among them.
+            let mut rest = !((k0 | k1 | k2 | k3) & !kz | kz);
+            while rest != 0 {
+                let id_l = ids[j + rest.trailing_zeros() as usize];
+                let g = table.group(id_l);
+                let same = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(id_l as i64));
+                o = _mm512_mask_mov_epi64(o, same, _mm512_set1_epi64(b * g as i64));
+                rest &= !same;
             }
+            o = _mm512_mask_mov_epi64(o, kz, _mm512_set1_epi64(INCOHERENT_OFFSET as i64));
+            _mm512_storeu_si512(offset.as_mut_ptr().add(j).cast(), o);
             j += 8;
         }
     }
@@ -585,10 +636,11 @@ unsafe fn add_one_256<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
 }
 
 /// [`add_one_256`] with the six field components (x, y, z; re, im) in lanes 0..6 of one
-/// 8-lane register: the same operations lane by lane, so the same bits. Lanes 6 and 7 of the
-/// product are zero, so the group sum is loaded and stored as its whole 64-byte line (`s` and
-/// its padding; `c` and its padding), padding unchanged: a plain aligned store that the next
-/// contribution of the group can load without a masked-store forwarding stall.
+/// 8-lane register: the same operations lane by lane, so the same bits. The group sum is loaded
+/// and stored as its whole 64-byte line (`s` and its padding; `c` and its padding; lanes 6 and
+/// 7 of the product, ±0 or NaN, go only to the padding, which nothing reads): a plain aligned
+/// store that the next contribution of the group can load without a masked-store forwarding
+/// stall.
 ///
 /// # Safety
 /// The CPU must have AVX-512F.
@@ -613,8 +665,10 @@ unsafe fn add_one_512<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
             neg_re,
         ));
         // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
-        // Lanes 6, 7 forced to +0 (whatever `co`, `si`), so the padding lanes stay unchanged.
-        let p = _mm512_maskz_add_pd(SIX, _mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
+        // Lanes 6, 7: ±0 for finite `co`, `si` (NaN for a non-finite phase, whose sum is NaN
+        // anyway); they only reach the padding, which nothing reads. No mask here: a masked
+        // add costs one more shuffle-port operation (`vexpandpd`) per contribution.
+        let p = _mm512_add_pd(_mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
         let sp = std::ptr::from_mut(sum).cast::<f64>();
         let s = _mm512_load_pd(sp);
         if COMP {

@@ -969,12 +969,27 @@ fn crafted_ids() -> Vec<u64> {
     ids
 }
 
+/// Ids whose chunks of eight mix several new ids, repeated, with id 0 and known groups (the
+/// AVX-512F kernel's one group lookup per distinct new id of a chunk): 70 contributions.
+fn crafted_new_ids_in_chunks() -> Vec<u64> {
+    let mut ids = vec![
+        3, 5, 3, 0, 9, 5, 0, 9, // three new groups, each twice, id 0 between them
+        21, 3, 22, 21, 0, 23, 22,
+        5, // a fourth, fifth and sixth group, repeated, in one chunk
+        22, 22, 22, 22, 22, 22, 22, 22, // a hashed group only
+        24, 24, 0, 0, 3, 25, 24, 25, // two more new ids among known ones
+    ];
+    ids.extend((0..38).map(|j| [3, 5, 9, 21, 22, 23, 24, 25, 0][j % 9]));
+    ids
+}
+
 #[test]
 fn column_kernels_walk_every_group_search_branch() {
     // Every kernel against `Accumulator::add` one by one, bit for bit (intensity, groups in order
     // of first appearance, their fields), both summations: the crafted point above; the same
     // with only the first four groups (all chunks after the first take the 8-lane compare);
-    // one contribution; one of id 0; and a batch of those points with an empty one.
+    // several new ids in one chunk of eight (`crafted_new_ids_in_chunks`); one contribution; one of
+    // id 0; and a batch of those points with an empty one.
     let mut r = Rng(29);
     let crafted: Vec<Contribution> = crafted_ids()
         .into_iter()
@@ -989,9 +1004,13 @@ fn column_kernels_walk_every_group_search_branch() {
             )
         })
         .collect();
+    let new_in_chunks: Vec<Contribution> = crafted_new_ids_in_chunks()
+        .into_iter()
+        .map(|id| c(id, 1e6 * r.sym(), r.field()))
+        .collect();
     let one = vec![c(5, 0.3, r.field())];
     let zero = vec![c(0, 0.3, r.field())];
-    let points: [&[Contribution]; 5] = [&crafted, &four, &one, &zero, &[]];
+    let points: [&[Contribution]; 6] = [&crafted, &four, &new_in_chunks, &one, &zero, &[]];
     for s in [Summation::Compensated, Summation::Plain] {
         for (k, cs) in points.iter().enumerate() {
             let by_add = added_one_by_one(s, cs);
@@ -1008,11 +1027,12 @@ fn column_kernels_walk_every_group_search_branch() {
             }
         }
         assert_eq!(added_one_by_one(s, &crafted).1.len(), 7);
+        assert_eq!(added_one_by_one(s, &new_in_chunks).1.len(), 8);
         let all: Vec<Contribution> = points.iter().flat_map(|cs| cs.iter().copied()).collect();
         let offsets = offsets_from_counts(&points.map(|cs| cs.len()));
         let cols = ContributionColumns::from(&all[..]);
         for kernel in column_kernels() {
-            let mut out = [0.0; 5];
+            let mut out = [0.0; 6];
             accumulate_columns_using(kernel, &cols, &offsets, s, &mut out);
             for (k, cs) in points.iter().enumerate() {
                 assert_eq!(
