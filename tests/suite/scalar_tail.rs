@@ -149,6 +149,14 @@ proptest! {
             let tol = f.error_bound + 1e-15 * terms;
             prop_assert!((f.sum - r).norm() <= tol, "{f:?} vs slow {r}: off {:e} > {tol:e}", (f.sum - r).norm());
         }
+        // Both orders barely decaying, off resonance: the Abel sum r/(1 − r)
+        // (`limit_of_vanishing_decay_is_the_abel_sum`).
+        let one_minus_r = (Complex64::from_polar(1.0, TAU * c) - 1.0).norm();
+        if ds.max(dp) <= 1e-20 && one_minus_r >= 0.06 {
+            let want = abel_sum(c);
+            let tol = f.error_bound + 1e-14 * want.norm() + 4.0 * ds.max(dp) / (one_minus_r * one_minus_r);
+            prop_assert!((f.sum - want).norm() <= tol, "{f:?} vs r/(1 − r) {want}");
+        }
         let (x, y) = (1.0 - ds, 1.0 - dp);
         let (ws, wp) = (ws / t, wp / t);
         let g2 = ws * x + wp * y;
@@ -288,4 +296,70 @@ fn mixed_light_plate_with_a_closed_tail_is_finite_and_exact() {
             "{l}: scalar {s:e} vs 50 digits {scalar:e}"
         );
     }
+}
+
+/// r/(1 − r) for r = e^{2πic}: the Abel sum Σ_{k≥1} r^k, the limit of F (eq. T2) as both
+/// 1 − |A|² vanish (the weights normalized, so √(w_s + w_p) = 1), formed without cancellation
+/// (1 − r = 2 sin²(πc) − i sin 2πc).
+fn abel_sum(c: f64) -> Complex64 {
+    let th = TAU * (c - c.round());
+    let h = (0.5 * th).sin();
+    let r = Complex64::new(th.cos(), th.sin());
+    r / Complex64::new(2.0 * h * h, -th.sin())
+}
+
+/// Where both orders barely decay (1 − |A|² from 1e-200 to 1e-20) and the round trip is off
+/// resonance (|1 − r| ≥ 0.06), F is the Abel sum r/(1 − r) to O(d/|1 − r|²) (summation by
+/// parts: the amplitudes √(w_s x^k + w_p y^k) fall from 1 by at most d/2 a round trip). These
+/// splits K = ln(w_m/w_M)/δ reach 1e180, far beyond 2^53, where K − 1 is not an f64: the region
+/// before the split once summed K terms for K − 1 and gave F = −0.02 for −0.5 (proptest seed
+/// at 1 − x = 3e-183, 1 − y = 1e-126, c = −251844.50069914624).
+#[test]
+fn limit_of_vanishing_decay_is_the_abel_sum() {
+    let ds = [
+        1e-200,
+        3.0691813412697794e-183,
+        1e-150,
+        1e-126,
+        1e-60,
+        1e-20,
+    ];
+    let weights = [
+        [0.11137870271438281, 0.8564519424022944],
+        [0.5, 0.5],
+        [0.9, 0.1],
+        [1e-3, 1.0],
+        [1.0, 1e-9],
+    ];
+    let cycles = [-251844.50069914624, 0.4993, -0.25, 0.1, 0.01, 1234.567];
+    let mut splits_beyond_2_53 = 0;
+    for &a in &ds {
+        for &b in &ds {
+            for w in weights {
+                for &c in &cycles {
+                    let f = scalar_tail(w, [a, b], c).expect("valid input");
+                    let want = abel_sum(c);
+                    let one_minus_r = (Complex64::from_polar(1.0, TAU * c) - 1.0).norm();
+                    let tol = f.error_bound
+                        + 1e-14 * want.norm()
+                        + 4.0 * a.max(b) / (one_minus_r * one_minus_r);
+                    let off = (f.sum - want).norm();
+                    assert!(
+                        off <= tol,
+                        "w {w:?}, 1 − |A|² ({a:e}, {b:e}), c {c}: F {} vs r/(1 − r) {want}: off {off:e} > {tol:e}",
+                        f.sum
+                    );
+                    let delta = (a - b).abs();
+                    let log_u = (w[0].max(w[1]) / w[0].min(w[1])).ln();
+                    if delta > 0.0 && log_u / delta > 9_007_199_254_740_992.0 {
+                        splits_beyond_2_53 += 1;
+                    }
+                }
+            }
+        }
+    }
+    assert!(
+        splits_beyond_2_53 > 100,
+        "{splits_beyond_2_53} splits beyond 2^53"
+    );
 }

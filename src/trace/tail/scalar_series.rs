@@ -167,9 +167,21 @@ pub fn scalar_tail(weights: [f64; 2], one_minus_abs2: [f64; 2], cycles: f64) -> 
     if k_split > 1.0 {
         // Region 1 ≤ k < K about m: √w_m Σ_k r1^k (1 + Σ_j (−1)^{j−1}|β_j| u_k^{−j}),
         // r1 = b e^{2πic}; the j-th sum is u^{−j} Σ_{k=1}^{n} (r1 ρ^{−j})^k.
+        // n = K − 1 terms. Above 2^53 the f64 K − 1 rounds to K (ρ within 2^-53 of 1, ln u
+        // ≥ δ 2^53), so there the phase of r1^n is frac(K c) − c, one round trip less than
+        // r0^K's (one rounding of the difference); its modulus e^{n ln b} cannot see the one
+        // round trip (|ln b| < 2^-53 when n ln b is of order 1). The n = K term taken for
+        // K − 1 made F wrong by about one term (F = −0.02 for −0.5 at 1 − x = 3e-183,
+        // 1 − y = 1e-126: `scalar_tail::limit_of_vanishing_decay_is_the_abel_sum`).
         let n = k_split - 1.0;
         let lam1 = -0.5 * beta; // ln b
-        let nc = frac_mul(n, c);
+        let nc = if k_split <= 9_007_199_254_740_992.0 {
+            // K ≤ 2^53: K − 1 is exact.
+            frac_mul(n, c)
+        } else {
+            let f = frac_mul(k_split, c) - c;
+            f - f.round()
+        };
         let head = finite_geometric(n, lam1, c, nc, 0.0);
         // |μ| ≤ ½ Σ_{k<K} b^k/u_k.
         let mu_c = 0.5 * finite_geometric(n, lam1 + delta, 0.0, 0.0, log_u).norm();
