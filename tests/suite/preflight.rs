@@ -42,7 +42,7 @@ fn estimate(c: &Case) -> WorkEstimate {
 
 /// The benched scenes (`benches/preflight.rs`), each with the mean CPU-seconds (all threads) of
 /// its run recorded by `cargo bench -p fringe-benches --bench preflight` on the project's 2-core
-/// Intel Xeon VM, 29 November 2026, in six series: the fourteenth session's merge (idle); the
+/// Intel Xeon VM, 29 November 2026, in seven series: the fourteenth session's merge (idle); the
 /// fifteenth session's merge, 1.2–1.4× slower in a slower phase of the VM (idle); the sixteenth
 /// session's preflight branch on the first fit of this model, under a load average of 2.5–3.5
 /// from other builds (the constants were fitted to these three); and the same branch on the
@@ -51,116 +51,121 @@ fn estimate(c: &Case) -> WorkEstimate {
 /// a fast phase of the VM: numpy's accumulation bench at 12.3–13.3 M/s), whose case run forms a
 /// dispersionless scene's optics once per point and cuts the Airy convergence report's rungs
 /// from one deep trace (up to 12 % less CPU for the Airy cases; the tracing code is otherwise
-/// the same). Short scenes are averaged over runs of at least 0.5 CPU-s in all;
+/// the same); and a seventh, idle too, at 20:07 UTC, in a slow phase of the VM (numpy's
+/// accumulation bench at 6.3–7.3 M/s, half its speed of 18:42: `lloyd_mirror` at 2.00 of the
+/// estimate at 4.44e-7 CPU-s per unit, which is why the rate is now 4.8e-7). Short scenes are
+/// averaged over runs of at least 0.5 CPU-s in all;
 /// `fresnel_rhomb`, a 40-µs run, from its mean ratio.
-fn benched() -> Vec<(&'static str, Case, [f64; 6])> {
+fn benched() -> Vec<(&'static str, Case, [f64; 7])> {
     vec![
         (
             "bk7_dispersion",
             case("bk7_dispersion", &|_| {}),
-            [0.0643, 0.1013, 0.1045, 0.0688, 0.076, 0.0762],
+            [0.0643, 0.1013, 0.1045, 0.0688, 0.076, 0.0762, 0.1289],
         ),
         (
             "brewster_extinction",
             case("brewster_extinction", &|_| {}),
-            [0.0136, 0.0201, 0.0215, 0.0131, 0.0155, 0.0128],
+            [0.0136, 0.0201, 0.0215, 0.0131, 0.0155, 0.0128, 0.0256],
         ),
         (
             "coherence_length",
             case("coherence_length", &|_| {}),
-            [0.2091, 0.2558, 0.2525, 0.1830, 0.2011, 0.1734],
+            [0.2091, 0.2558, 0.2525, 0.1830, 0.2011, 0.1734, 0.3332],
         ),
         (
             "coherence_length_paper_rule",
             case("coherence_length_paper_rule", &|_| {}),
-            [0.011, 0.016, 0.0122, 0.0107, 0.0106, 0.0105],
+            [0.011, 0.016, 0.0122, 0.0107, 0.0106, 0.0105, 0.0188],
         ),
         (
             "fresnel_rhomb",
             case("fresnel_rhomb", &|_| {}),
-            [3.744e-05, 6.564e-05, 4.98e-05, 4.47e-05, 3.73e-05, 4.01e-05],
+            [
+                3.744e-05, 6.564e-05, 4.98e-05, 4.47e-05, 3.73e-05, 4.01e-05, 6.57e-05,
+            ],
         ),
         (
             "incoherent_sources",
             case("incoherent_sources", &|_| {}),
-            [0.0027, 0.0038, 0.0040, 0.0022, 0.0032, 0.003],
+            [0.0027, 0.0038, 0.0040, 0.0022, 0.0032, 0.003, 0.0048],
         ),
         (
             "lloyd_mirror",
             case("lloyd_mirror", &|_| {}),
-            [0.0089, 0.0119, 0.0140, 0.0076, 0.0098, 0.0084],
+            [0.0089, 0.0119, 0.0140, 0.0076, 0.0098, 0.0084, 0.0156],
         ),
         (
             "michelson",
             case("michelson", &|_| {}),
-            [0.0361, 0.052, 0.0592, 0.0355, 0.0404, 0.0344],
+            [0.0361, 0.052, 0.0592, 0.0355, 0.0404, 0.0344, 0.0663],
         ),
         (
             "plate_airy_p",
             case("plate_airy_p", &|_| {}),
-            [0.0746, 0.1096, 0.1186, 0.0797, 0.069, 0.0631],
+            [0.0746, 0.1096, 0.1186, 0.0797, 0.069, 0.0631, 0.1195],
         ),
         (
             "plate_airy_s",
             case("plate_airy_s", &|_| {}),
-            [0.0878, 0.121, 0.1237, 0.0899, 0.073, 0.0736],
+            [0.0878, 0.121, 0.1237, 0.0899, 0.073, 0.0736, 0.1153],
         ),
         (
             "plate_airy_wavelength",
             case("plate_airy_wavelength", &|_| {}),
-            [0.0184, 0.029, 0.0310, 0.0190, 0.0222, 0.0182],
+            [0.0184, 0.029, 0.0310, 0.0190, 0.0222, 0.0182, 0.0328],
         ),
         (
             "plate_two_beam_paper",
             case("plate_two_beam_paper", &|_| {}),
-            [0.0238, 0.029, 0.0358, 0.0228, 0.0248, 0.021],
+            [0.0238, 0.029, 0.0358, 0.0228, 0.0248, 0.021, 0.041],
         ),
         (
             "plate_two_beam_unpolarized",
             case("plate_two_beam_unpolarized", &|_| {}),
-            [0.0263, 0.0359, 0.0389, 0.0257, 0.026, 0.022],
+            [0.0263, 0.0359, 0.0389, 0.0257, 0.026, 0.022, 0.0426],
         ),
         (
             "thin_film_on_substrate",
             case("thin_film_on_substrate", &|_| {}),
-            [0.068, 0.0889, 0.1025, 0.0711, 0.0656, 0.0545],
+            [0.068, 0.0889, 0.1025, 0.0711, 0.0656, 0.0545, 0.1094],
         ),
         (
             "tir_interference",
             case("tir_interference", &|_| {}),
-            [0.0125, 0.0157, 0.0184, 0.0120, 0.0122, 0.0108],
+            [0.0125, 0.0157, 0.0184, 0.0120, 0.0122, 0.0108, 0.0193],
         ),
         (
             "wedge_fizeau",
             case("wedge_fizeau", &|_| {}),
-            [0.0139, 0.0169, 0.0210, 0.0132, 0.0137, 0.0119],
+            [0.0139, 0.0169, 0.0210, 0.0132, 0.0137, 0.0119, 0.0225],
         ),
         (
             "young_paper",
             case("young_paper", &|_| {}),
-            [0.0054, 0.0066, 0.0076, 0.0040, 0.0053, 0.0046],
+            [0.0054, 0.0066, 0.0076, 0.0040, 0.0053, 0.0046, 0.0083],
         ),
         (
             "1 stacked plate(s)",
             stacked(1, &|_| {}),
-            [0.0246, 0.034, 0.0367, 0.0242, 0.0248, 0.0222],
+            [0.0246, 0.034, 0.0367, 0.0242, 0.0248, 0.0222, 0.0381],
         ),
         (
             "2 stacked plate(s)",
             stacked(2, &|_| {}),
-            [1.397, 1.776, 2.3238, 1.3977, 1.6766, 1.2869],
+            [1.397, 1.776, 2.3238, 1.3977, 1.6766, 1.2869, 2.446],
         ),
         (
             "3 stacked plate(s)",
             stacked(3, &|_| {}),
-            [95.99, 116.6, 117.1572, 89.3746, 82.8103, 81.4051],
+            [95.99, 116.6, 117.1572, 89.3746, 82.8103, 81.4051, 140.2407],
         ),
         (
             "plate_two_beam_paper, m = 40",
             stacked(1, &|d| {
                 d["trace"] = json!({ "max_internal_reflections": 40 })
             }),
-            [0.8462, 1.001, 0.9919, 0.7160, 0.7448, 0.8226],
+            [0.8462, 1.001, 0.9919, 0.7160, 0.7448, 0.8226, 1.0505],
         ),
         (
             "plate_airy_s, m = 2000, 200 angles",
@@ -168,13 +173,13 @@ fn benched() -> Vec<(&'static str, Case, [f64; 6])> {
                 d["trace"] = json!({ "max_internal_reflections": 2000 });
                 d["probe"]["sweep"]["count"] = json!(200);
             }),
-            [34.93, 35.21, 35.8844, 27.4433, 27.2738, 27.4544],
+            [34.93, 35.21, 35.8844, 27.4433, 27.2738, 27.4544, 39.6064],
         ),
     ]
 }
 
 /// The estimate (work units × `SECONDS_PER_WORK_UNIT`) is within 2× of each recorded run of
-/// every benched scene in all six series ([`benched`]): a term dropped or double-counted (the
+/// every benched scene in all seven series ([`benched`]): a term dropped or double-counted (the
 /// per-sample and per-trace terms, the tail rule's set-up, the solver's Σ depth², the walk's
 /// per-event passes, the stacked plates' tree) moves some scene out. Scenes span 6 decades of
 /// work, so one rate fitting them all is the claim.

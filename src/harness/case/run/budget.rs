@@ -130,7 +130,7 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
     2.0 * observed.abs().sqrt() * d + d * d
 }
 
-/// Work units (see [`preflight`]) a case may use before it is refused: about 355 CPU-seconds
+/// Work units (see [`preflight`]) a case may use before it is refused: about 380 CPU-seconds
 /// at [`SECONDS_PER_WORK_UNIT`], about three minutes of wall time on the idle 2-core machine
 /// of this project (more when it is busy). The Airy plate with 2000 internal reflections at
 /// 2000 angles (6.8e8 units; 200 angles ran 35 CPU-s) is accepted; three plates stacked in
@@ -164,8 +164,15 @@ pub const MAX_PATH_EVENTS: f64 = 8.0e8;
 /// 0.52–1.75 and 0.65–1.92, spreads 3.4 and 3.0. After the merge with the case run that cuts
 /// the Airy convergence report's rungs from one deep trace (counted so since: one trace at the
 /// deepest rung per point), two idle series in a fast phase of the VM: 0.70–1.25 and 0.59–1.13
-/// (one plate, `plate_two_beam_paper` low; `lloyd_mirror`, `incoherent_sources` high).
-pub const SECONDS_PER_WORK_UNIT: f64 = 4.44e-7;
+/// (one plate, `plate_two_beam_paper` low; `lloyd_mirror`, `incoherent_sources` high). A
+/// third idle series of the merge, 40 minutes later in a slow phase of the VM (numpy's
+/// accumulation bench at half its speed), put `lloyd_mirror` at 2.00 and the whole series at
+/// 1.07–2.00 of the fitted rate 4.44e-7: the VM's own speed moves the runs by ~1.9× between
+/// its phases, about as much as the model's spread within one series. The rate is therefore
+/// 4.8e-7, the geometric centre of the idle series' ends (0.59 in the fastest phase, 2.00 in
+/// the slowest, at 4.44e-7): every series within 0.55–1.85 of the estimate, each scene's runs
+/// within 2× of it.
+pub const SECONDS_PER_WORK_UNIT: f64 = 4.8e-7;
 
 /// The cost of moving a point's traced arrivals to the next point's wavelength (the same
 /// scene, observer and budget: `trace_point` relabels every arrival instead of tracing), as a
