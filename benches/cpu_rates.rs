@@ -80,20 +80,28 @@ fn measure(what: &str, reps: usize, items: usize, mut work: impl FnMut()) {
     );
 }
 
+/// The summations the accumulation rows are measured with.
+const SUMMATIONS: [(&str, Summation); 2] = [
+    ("plain", Summation::Plain),
+    ("compensated", Summation::Compensated),
+];
+
+/// A rayon pool of 2 threads (the comparison: 2 threads on the 2-core machine).
+fn two_threads() -> rayon::ThreadPool {
+    rayon::ThreadPoolBuilder::new()
+        .num_threads(2)
+        .build()
+        .expect("rayon pool")
+}
+
 fn accumulate() {
     let (t, p, g) = (1usize << 20, 1usize << 14, 4u64);
     // The data of `benches/accumulate.rs`'s T1M_P16k_G4.
     let (d, offsets) = data(t, p, g, 1);
     let cols = ContributionColumns::from(&d[..]);
     let mut out = vec![0.0; p];
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("rayon pool");
-    for (name, s) in [
-        ("plain", Summation::Plain),
-        ("compensated", Summation::Compensated),
-    ] {
+    let pool = two_threads();
+    for (name, s) in SUMMATIONS {
         measure(&format!("accumulate T1M_P16k_G4 1t {name}"), 20, t, || {
             accumulate_points(black_box(&d), &offsets, s, &mut out);
             black_box(&out);
@@ -145,10 +153,7 @@ fn accumulate() {
     let (d2, offsets2) = data(t2, p2, g, 2);
     let cols2 = ContributionColumns::from(&d2[..]);
     let mut out2 = vec![0.0; p2];
-    for (name, s) in [
-        ("plain", Summation::Plain),
-        ("compensated", Summation::Compensated),
-    ] {
+    for (name, s) in SUMMATIONS {
         measure(
             &format!("accumulate T16k_P256_G4 columns 1t {name} (L2)"),
             20 * (t / t2),
@@ -203,14 +208,8 @@ fn accumulate_2t() {
     };
     drop(d);
     let mut out = vec![0.0; p];
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("rayon pool");
-    for (name, s) in [
-        ("plain", Summation::Plain),
-        ("compensated", Summation::Compensated),
-    ] {
+    let pool = two_threads();
+    for (name, s) in SUMMATIONS {
         for (pages, c) in [("", &cols), (" (2 MiB pages)", &huge)] {
             measure(
                 &format!("accumulate T1M_P16k_G4 columns 2t {name}{pages}"),
@@ -308,10 +307,7 @@ fn spectrum() {
             (s, t, spectrum_settings(th, 1.7, D, mid))
         })
         .collect();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("rayon pool");
+    let pool = two_threads();
     let sixteen = |route: bool| {
         use rayon::prelude::*;
         pool.install(|| {
@@ -427,10 +423,7 @@ fn spectrum_dispersive() {
             )
         })
         .collect();
-    let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
-        .build()
-        .expect("rayon pool");
+    let pool = two_threads();
     measure(
         "airy/spectrum bk7 16 spectra 2t round_trips",
         200,
