@@ -133,8 +133,8 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
 /// Work units (see [`preflight`]) a case may use before it is refused: about 380 CPU-seconds
 /// at [`SECONDS_PER_WORK_UNIT`], about three minutes of wall time on the idle 2-core machine
 /// of this project (more when it is busy). The Airy plate with 2000 internal reflections at
-/// 2000 angles (6.8e8 units; 200 angles ran 35 CPU-s) is accepted; three plates stacked in
-/// air under a point source (2.0e8 units, 96–117 CPU-s measured) too; four are refused. It was
+/// 2000 angles (6.8e8 units; 200 angles ran 27–40 CPU-s) is accepted; three plates stacked in
+/// air under a point source (2.0e8 units, 81–140 CPU-s measured in seven series) too; four are refused. It was
 /// 5e8 while the estimate under-counted the Airy walk by 1.75× (the same 2000-angle plate at
 /// 3.7e8 units): raised with the estimate so that the cap admits the same cases.
 pub const MAX_PATH_EVENTS: f64 = 8.0e8;
