@@ -364,19 +364,9 @@ fn tree_counts(
     internal: usize,
     units: &dyn Fn(&TreeCounts) -> f64,
 ) -> Result<(TreeCounts, bool), CaseError> {
-    let spec = &case.spec;
     let cap = MAX_PATH_EVENTS;
-    let built =
-        build::build_scene(&spec.scene, &pt.overrides).map_err(|e| case_err(case, "$.scene", e))?;
-    let spectrum = build::spectrum(&spec.light, &pt.overrides);
-    let lambda = spectrum[spectrum.len() / 2].0;
-    let optics = built
-        .scene
-        .optics(lambda)
-        .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-    let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
-        .map_err(|e| case_err(case, "$.probe", e))?
-    else {
+    let spectrum = build::spectrum(&case.spec.light, &pt.overrides);
+    let Some((built, optics, target)) = point_at(case, pt, spectrum[spectrum.len() / 2].0)? else {
         return Ok((TreeCounts::default(), true)); // no transmitted wave: nothing is traced
     };
     let probe = probe_targets(&target);

@@ -163,16 +163,8 @@ fn convergence_with(
                     PointState::Dark => return Ok((0.0, 0.0)),
                     PointState::Formed(p) => (p, None),
                     PointState::Fresh => {
-                        let built = build::build_scene(&spec.scene, &pt.overrides)
-                            .map_err(|e| case_err(case, "$.scene", e))?;
                         let lambda = build::spectrum(&spec.light, &pt.overrides)[0].0;
-                        let optics = built
-                            .scene
-                            .optics(lambda)
-                            .map_err(|e| case_err(case, "$.light", e.to_string()))?;
-                        let Some(target) = build::propagating_target(&pt.observer, &built, lambda)
-                            .map_err(|e| case_err(case, "$.probe", e))?
-                        else {
+                        let Some((built, optics, target)) = point_at(case, pt, lambda)? else {
                             return Ok((0.0, 0.0)); // no transmitted wave: T = 0 traced and exact
                         };
                         let factor =

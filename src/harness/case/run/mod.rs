@@ -376,6 +376,26 @@ fn relabel_optics(optics: &mut crate::scene::SceneOptics, lambda_m: f64) {
     }
 }
 
+/// A probe point's scene built, its optics at `lambda_m` and its propagating target, with the
+/// errors at the keys that drive them (`$.scene`, `$.light`, `$.probe`); `None` where no wave
+/// is transmitted to the observer (nothing is traced there). What the preflight's tree count
+/// and the convergence report form at one wavelength of a point.
+pub(super) fn point_at(
+    case: &Case,
+    pt: &ProbePoint,
+    lambda_m: f64,
+) -> Result<Option<(Built, crate::scene::SceneOptics, Target)>, CaseError> {
+    let built = build::build_scene(&case.spec.scene, &pt.overrides)
+        .map_err(|e| case_err(case, "$.scene", e))?;
+    let optics = built
+        .scene
+        .optics(lambda_m)
+        .map_err(|e| case_err(case, "$.light", e.to_string()))?;
+    let target = build::propagating_target(&pt.observer, &built, lambda_m)
+        .map_err(|e| case_err(case, "$.probe", e))?;
+    Ok(target.map(|t| (built, optics, t)))
+}
+
 /// A probe point's scene, spectrum and internal-reflection budget; `visit` gets every
 /// spectral sample traced, one at a time (a point's arrivals over a long spectrum are never
 /// held together). `traced` holds the arrivals last traced (by this point or a previous one)
