@@ -170,7 +170,12 @@ pub const MAX_PATH_EVENTS: f64 = 8.0e8;
 /// series (`bk7_dispersion` over `thin_film_on_substrate` from 0.95 to 1.40, the case run having
 /// changed between the fourth and the fifth series). The scenes at the ends: the Airy plates,
 /// `bk7_dispersion` and two stacked plates low; `brewster_extinction`, `incoherent_sources`
-/// and `plate_two_beam_unpolarized` high. History: the sixteenth session fitted the same way on
+/// and `plate_two_beam_unpolarized` high. Checked on two series the fit did not see (21:29 and
+/// 21:33 UTC, another helper's build running, load average 1.8–4.1): spreads 1.84 (the VM sped
+/// up half-way through it: `plate_two_beam_paper` at 1.22 and the same case as `1 stacked
+/// plate(s)` at 0.87 minutes later) and 1.33, every run within 0.79–1.45 of the estimate; the
+/// sixteenth session's constants on the same two series: 2.50 and 1.83, 0.68–1.69.
+/// History: the sixteenth session fitted the same way on
 /// three series (0.65–1.16 and 0.81–1.53 idle, 1.01–1.79 loaded) and set this rate, 4.8e-7, as
 /// the geometric centre of the idle series' ends when a third idle series, 40 minutes after two
 /// others, ran 1.9× slower (the VM's own phases: numpy's accumulation bench at half its speed).
