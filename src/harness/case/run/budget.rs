@@ -285,7 +285,7 @@ pub const DEPTH_SQUARE_UNITS: [f64; 3] = [0.0180, 2.05, 0.0];
 /// (Σ d² · surfaces), by [`PointKind`]: each trace of a path of d events looks for an
 /// obstruction on every surface at every segment. Under a point source it separates the stacked
 /// plates (5 and 7 surfaces with the shield) from 40 internal reflections in one plate (3): with
-/// Σ d² alone, two plates sat 1.3 times lower than three in every series. Fitted to the seven
+/// Σ d² alone, two plates sat 1.1–1.5 times lower than three in every series. Fitted to the seven
 /// series ([`SECONDS_PER_WORK_UNIT`]); plane waves onto a point: nothing left to it.
 pub const SURFACE_DEPTH_SQUARE_UNITS: [f64; 3] = [0.00645, 0.0, 0.0];
 
@@ -304,7 +304,7 @@ pub const SURFACE_DEPTH_SQUARE_UNITS: [f64; 3] = [0.00645, 0.0, 0.0];
 pub const NEWTON_EVENT_UNITS: [f64; 3] = [7.30, 0.0, 0.0];
 
 /// Work units per node of a walked tree per trace: its discovery (the probe rays) and the walk
-/// tracing it once (both polarized models, extents and blockers): measured 2.0–2.2 µs of walk
+/// tracing it once (both polarized models, extents and blockers): measured 1.9–2.2 µs of walk
 /// and 0.2–0.7 µs of discovery per node. Fitted to the seven series ([`SECONDS_PER_WORK_UNIT`]).
 pub const NODE_UNITS: [f64; 3] = [0.0, 0.0, 5.43];
 
