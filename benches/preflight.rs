@@ -96,6 +96,8 @@ fn scenes() -> Vec<(String, PathBuf, Value)> {
 fn main() {
     // `cargo bench` passes `--bench`; a first argument that is not an option filters the scenes.
     let filter = std::env::args().skip(1).find(|a| !a.starts_with('-'));
+    // `--counts`: each scene's counts (`run::WorkCounts`) and estimate, without running it.
+    let counts_only = std::env::args().any(|a| a == "--counts");
     println!(
         "rate: {SECONDS_PER_WORK_UNIT:.2e} CPU-s per work unit; cap {MAX_PATH_EVENTS:.0e} units"
     );
@@ -117,6 +119,10 @@ fn main() {
             }
         };
         let estimate = units * SECONDS_PER_WORK_UNIT;
+        if counts_only {
+            println!("COUNTS {name}: {units:.6e} {:?}", parts.counts);
+            continue;
+        }
         let mut cpu = Vec::new();
         let t0 = Instant::now();
         loop {

@@ -184,7 +184,7 @@ fn rhomb_retardance_uses_the_medium_beyond_the_face() {
 
 /// The work preflight counts what the tracer does, on the sequence tree the tracer enumerates:
 /// a plane wave observed in the far field is walked as a tree of shared beginnings, so the
-/// Airy plate with 2000 internal reflections at 2000 angles (6.8e8 units, about 5 CPU-minutes:
+/// Airy plate with 2000 internal reflections at 2000 angles (7.4e8 units, about 6 CPU-minutes:
 /// the walk is linear in m, the case run's passes over each walked path are not) is accepted;
 /// the work is proportional to the probe points (of one tree) and grows with the internal reflections.
 /// (Stacked plates: `input_classes::stacked_plates_are_counted_and_refused_before_work`.)

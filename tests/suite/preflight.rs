@@ -7,9 +7,9 @@
 use crate::support::stacked_plates::stacked_plates;
 use fringe::harness::case::load::{self, Case};
 use fringe::harness::case::run::{
-    self, DEPTH_SQUARE_UNITS, MOVED_TRACE, NODE_UNITS, PointKind, SAMPLE_UNITS,
-    SECONDS_PER_WORK_UNIT, TAIL_RULE_UNITS, TRACE_UNITS, VISIT_UNITS, WALKED_EVENT_UNITS,
-    WALKED_TRACE_EVENT_SHARE, WorkCounts, WorkEstimate,
+    self, DEPTH_SQUARE_UNITS, MOVED_TRACE, NEWTON_EVENT_UNITS, NODE_UNITS, PointKind, SAMPLE_UNITS,
+    SECONDS_PER_WORK_UNIT, SURFACE_DEPTH_SQUARE_UNITS, TAIL_RULE_UNITS, TRACE_UNITS, VISIT_UNITS,
+    WALKED_EVENT_UNITS, WorkCounts, WorkEstimate,
 };
 use serde_json::{Value, json};
 use std::path::{Path, PathBuf};
@@ -53,119 +53,165 @@ fn estimate(c: &Case) -> WorkEstimate {
 /// from one deep trace (up to 12 % less CPU for the Airy cases; the tracing code is otherwise
 /// the same); and a seventh, idle too, at 20:07 UTC, in a slow phase of the VM (numpy's
 /// accumulation bench at 6.3–7.3 M/s, half its speed of 18:42: `lloyd_mirror` at 2.00 of the
-/// estimate at 4.44e-7 CPU-s per unit, which is why the rate is now 4.8e-7). Short scenes are
-/// averaged over runs of at least 0.5 CPU-s in all;
+/// estimate at 4.44e-7 CPU-s per unit, which is why the rate is now 4.8e-7). The seventeenth
+/// session refitted the constants to these seven (`run::SECONDS_PER_WORK_UNIT`) and recorded
+/// two more on the refitted model, the check on data the fit did not see, both while another
+/// helper's build ran: the eighth at 21:29 UTC (load average 3.0–4.1, falling to 2.0 during the
+/// series: the VM sped up half-way, `plate_two_beam_paper` at 1.22 of its estimate and the same
+/// case as `1 stacked plate(s)` minutes later at 0.87), the ninth at 21:33 UTC (load average
+/// 1.8–3.6). Short scenes are averaged over runs of at least 0.5 CPU-s in all;
 /// `fresnel_rhomb`, a 40-µs run, from its mean ratio.
-fn benched() -> Vec<(&'static str, Case, [f64; 7])> {
+fn benched() -> Vec<(&'static str, Case, [f64; 9])> {
     vec![
         (
             "bk7_dispersion",
             case("bk7_dispersion", &|_| {}),
-            [0.0643, 0.1013, 0.1045, 0.0688, 0.076, 0.0762, 0.1289],
+            [
+                0.0643, 0.1013, 0.1045, 0.0688, 0.076, 0.0762, 0.1289, 0.1199, 0.102,
+            ],
         ),
         (
             "brewster_extinction",
             case("brewster_extinction", &|_| {}),
-            [0.0136, 0.0201, 0.0215, 0.0131, 0.0155, 0.0128, 0.0256],
+            [
+                0.0136, 0.0201, 0.0215, 0.0131, 0.0155, 0.0128, 0.0256, 0.0228, 0.0204,
+            ],
         ),
         (
             "coherence_length",
             case("coherence_length", &|_| {}),
-            [0.2091, 0.2558, 0.2525, 0.1830, 0.2011, 0.1734, 0.3332],
+            [
+                0.2091, 0.2558, 0.2525, 0.1830, 0.2011, 0.1734, 0.3332, 0.3181, 0.291,
+            ],
         ),
         (
             "coherence_length_paper_rule",
             case("coherence_length_paper_rule", &|_| {}),
-            [0.011, 0.016, 0.0122, 0.0107, 0.0106, 0.0105, 0.0188],
+            [
+                0.011, 0.016, 0.0122, 0.0107, 0.0106, 0.0105, 0.0188, 0.0179, 0.0165,
+            ],
         ),
         (
             "fresnel_rhomb",
             case("fresnel_rhomb", &|_| {}),
             [
-                3.744e-05, 6.564e-05, 4.98e-05, 4.47e-05, 3.73e-05, 4.01e-05, 6.57e-05,
+                3.744e-05, 6.564e-05, 4.98e-05, 4.47e-05, 3.73e-05, 4.01e-05, 6.57e-05, 6.677e-05,
+                6.625e-05,
             ],
         ),
         (
             "incoherent_sources",
             case("incoherent_sources", &|_| {}),
-            [0.0027, 0.0038, 0.0040, 0.0022, 0.0032, 0.003, 0.0048],
+            [
+                0.0027, 0.0038, 0.0040, 0.0022, 0.0032, 0.003, 0.0048, 0.004, 0.0037,
+            ],
         ),
         (
             "lloyd_mirror",
             case("lloyd_mirror", &|_| {}),
-            [0.0089, 0.0119, 0.0140, 0.0076, 0.0098, 0.0084, 0.0156],
+            [
+                0.0089, 0.0119, 0.0140, 0.0076, 0.0098, 0.0084, 0.0156, 0.0143, 0.0134,
+            ],
         ),
         (
             "michelson",
             case("michelson", &|_| {}),
-            [0.0361, 0.052, 0.0592, 0.0355, 0.0404, 0.0344, 0.0663],
+            [
+                0.0361, 0.052, 0.0592, 0.0355, 0.0404, 0.0344, 0.0663, 0.0608, 0.0558,
+            ],
         ),
         (
             "plate_airy_p",
             case("plate_airy_p", &|_| {}),
-            [0.0746, 0.1096, 0.1186, 0.0797, 0.069, 0.0631, 0.1195],
+            [
+                0.0746, 0.1096, 0.1186, 0.0797, 0.069, 0.0631, 0.1195, 0.1144, 0.1053,
+            ],
         ),
         (
             "plate_airy_s",
             case("plate_airy_s", &|_| {}),
-            [0.0878, 0.121, 0.1237, 0.0899, 0.073, 0.0736, 0.1153],
+            [
+                0.0878, 0.121, 0.1237, 0.0899, 0.073, 0.0736, 0.1153, 0.1163, 0.1059,
+            ],
         ),
         (
             "plate_airy_wavelength",
             case("plate_airy_wavelength", &|_| {}),
-            [0.0184, 0.029, 0.0310, 0.0190, 0.0222, 0.0182, 0.0328],
+            [
+                0.0184, 0.029, 0.0310, 0.0190, 0.0222, 0.0182, 0.0328, 0.0309, 0.0288,
+            ],
         ),
         (
             "plate_two_beam_paper",
             case("plate_two_beam_paper", &|_| {}),
-            [0.0238, 0.029, 0.0358, 0.0228, 0.0248, 0.021, 0.041],
+            [
+                0.0238, 0.029, 0.0358, 0.0228, 0.0248, 0.021, 0.041, 0.0366, 0.0349,
+            ],
         ),
         (
             "plate_two_beam_unpolarized",
             case("plate_two_beam_unpolarized", &|_| {}),
-            [0.0263, 0.0359, 0.0389, 0.0257, 0.026, 0.022, 0.0426],
+            [
+                0.0263, 0.0359, 0.0389, 0.0257, 0.026, 0.022, 0.0426, 0.0384, 0.0365,
+            ],
         ),
         (
             "thin_film_on_substrate",
             case("thin_film_on_substrate", &|_| {}),
-            [0.068, 0.0889, 0.1025, 0.0711, 0.0656, 0.0545, 0.1094],
+            [
+                0.068, 0.0889, 0.1025, 0.0711, 0.0656, 0.0545, 0.1094, 0.1038, 0.0943,
+            ],
         ),
         (
             "tir_interference",
             case("tir_interference", &|_| {}),
-            [0.0125, 0.0157, 0.0184, 0.0120, 0.0122, 0.0108, 0.0193],
+            [
+                0.0125, 0.0157, 0.0184, 0.0120, 0.0122, 0.0108, 0.0193, 0.0175, 0.0157,
+            ],
         ),
         (
             "wedge_fizeau",
             case("wedge_fizeau", &|_| {}),
-            [0.0139, 0.0169, 0.0210, 0.0132, 0.0137, 0.0119, 0.0225],
+            [
+                0.0139, 0.0169, 0.0210, 0.0132, 0.0137, 0.0119, 0.0225, 0.0175, 0.0183,
+            ],
         ),
         (
             "young_paper",
             case("young_paper", &|_| {}),
-            [0.0054, 0.0066, 0.0076, 0.0040, 0.0053, 0.0046, 0.0083],
+            [
+                0.0054, 0.0066, 0.0076, 0.0040, 0.0053, 0.0046, 0.0083, 0.0051, 0.0063,
+            ],
         ),
         (
             "1 stacked plate(s)",
             stacked(1, &|_| {}),
-            [0.0246, 0.034, 0.0367, 0.0242, 0.0248, 0.0222, 0.0381],
+            [
+                0.0246, 0.034, 0.0367, 0.0242, 0.0248, 0.0222, 0.0381, 0.0261, 0.0336,
+            ],
         ),
         (
             "2 stacked plate(s)",
             stacked(2, &|_| {}),
-            [1.397, 1.776, 2.3238, 1.3977, 1.6766, 1.2869, 2.446],
+            [
+                1.397, 1.776, 2.3238, 1.3977, 1.6766, 1.2869, 2.446, 1.875, 1.988,
+            ],
         ),
         (
             "3 stacked plate(s)",
             stacked(3, &|_| {}),
-            [95.99, 116.6, 117.1572, 89.3746, 82.8103, 81.4051, 140.2407],
+            [
+                95.99, 116.6, 117.1572, 89.3746, 82.8103, 81.4051, 140.2407, 146.2, 116.0,
+            ],
         ),
         (
             "plate_two_beam_paper, m = 40",
             stacked(1, &|d| {
                 d["trace"] = json!({ "max_internal_reflections": 40 })
             }),
-            [0.8462, 1.001, 0.9919, 0.7160, 0.7448, 0.8226, 1.0505],
+            [
+                0.8462, 1.001, 0.9919, 0.7160, 0.7448, 0.8226, 1.0505, 1.256, 1.113,
+            ],
         ),
         (
             "plate_airy_s, m = 2000, 200 angles",
@@ -173,16 +219,18 @@ fn benched() -> Vec<(&'static str, Case, [f64; 7])> {
                 d["trace"] = json!({ "max_internal_reflections": 2000 });
                 d["probe"]["sweep"]["count"] = json!(200);
             }),
-            [34.93, 35.21, 35.8844, 27.4433, 27.2738, 27.4544, 39.6064],
+            [
+                34.93, 35.21, 35.8844, 27.4433, 27.2738, 27.4544, 39.6064, 40.72, 35.73,
+            ],
         ),
     ]
 }
 
 /// The estimate (work units × `SECONDS_PER_WORK_UNIT`) is within 2× of each recorded run of
-/// every benched scene in all seven series ([`benched`]): a term dropped or double-counted (the
-/// per-sample and per-trace terms, the tail rule's set-up, the solver's Σ depth², the walk's
-/// per-event passes, the stacked plates' tree) moves some scene out. Scenes span 6 decades of
-/// work, so one rate fitting them all is the claim.
+/// every benched scene in all nine series ([`benched`]): a term dropped or double-counted (the
+/// per-sample and per-trace terms, the tail rule's set-up, the solver's Σ depth² and its events
+/// without an exact launch, the walk's per-event passes, the stacked plates' tree) moves some
+/// scene out. Scenes span 6 decades of work, so one rate fitting them all is the claim.
 #[test]
 fn the_estimate_is_within_2x_of_the_calibration_runs() {
     for (name, c, measured) in benched() {
@@ -251,32 +299,41 @@ fn terms(c: &WorkCounts) -> Vec<(&'static str, f64)> {
             "depth squares",
             per_kind(DEPTH_SQUARE_UNITS, c.depth_squares),
         ),
-        ("nodes", per_kind(NODE_UNITS, c.nodes)),
         (
-            "walked events",
-            WALKED_EVENT_UNITS * (c.sample_events[w] + WALKED_TRACE_EVENT_SHARE * c.events[w]),
+            "surface depth squares",
+            per_kind(SURFACE_DEPTH_SQUARE_UNITS, c.surface_depth_squares),
         ),
+        (
+            "newton events",
+            per_kind(NEWTON_EVENT_UNITS, c.newton_events),
+        ),
+        ("nodes", per_kind(NODE_UNITS, c.nodes)),
+        ("walked events", WALKED_EVENT_UNITS * c.events[w]),
     ]
 }
 
 /// Every term of the model carries a benched scene: it is at least the given share of that
-/// scene's estimate, and for all but the tail rule's set-up the scene's recorded runs would
-/// leave 2× of an estimate without it (a term dropped fails here, and the 2× test with it).
-/// The terms sum to the estimate.
+/// scene's estimate, and the scene's slowest recorded run would be more than 2× an estimate
+/// without it (a term dropped fails here, and the 2× test with it): the solver's events that
+/// no exact launch covers in `michelson` (a tilted splitter), the obstruction tests of Σ d² ·
+/// surfaces in three stacked plates. The terms sum to the estimate.
 #[test]
 fn every_term_carries_a_benched_scene() {
     let scenes = benched();
     let carried = [
-        ("samples", "coherence_length", 0.8),
+        ("samples", "coherence_length", 0.9),
         ("traces (solved, point sources)", "young_paper", 0.6),
-        ("traces (solved, plane waves)", "tir_interference", 0.8),
-        ("traces (walked)", "coherence_length_paper_rule", 0.4),
-        ("tail-rule points", "plate_airy_wavelength", 0.3),
-        ("visits", "3 stacked plate(s)", 0.75),
-        ("depth squares", "plate_two_beam_paper, m = 40", 0.4),
-        ("nodes", "bk7_dispersion", 0.5),
+        ("traces (solved, plane waves)", "tir_interference", 0.45),
+        ("traces (walked)", "coherence_length_paper_rule", 0.3),
+        ("tail-rule points", "plate_airy_wavelength", 0.75),
+        ("visits", "2 stacked plate(s)", 0.6),
+        ("depth squares", "wedge_fizeau", 0.4),
+        ("surface depth squares", "3 stacked plate(s)", 0.3),
+        ("newton events", "michelson", 0.4),
+        ("nodes", "brewster_extinction", 0.7),
         ("walked events", "plate_airy_s, m = 2000, 200 angles", 0.9),
     ];
+    let mut checked = 0;
     for (scene, c, measured) in &scenes {
         let e = estimate(c);
         let sum: f64 = terms(&e.counts).iter().map(|t| t.1).sum();
@@ -291,22 +348,49 @@ fn every_term_carries_a_benched_scene() {
             let part = terms(&e.counts).iter().find(|t| t.0 == term).unwrap().1;
             let share = part / e.units();
             assert!(share >= least, "{term} in {scene}: share {share:.2}");
-            if term != "tail-rule points" {
-                let without = (e.units() - part) * SECONDS_PER_WORK_UNIT;
-                let slowest = measured.iter().copied().fold(0.0, f64::max);
-                assert!(
-                    slowest / without > 2.0,
-                    "{term} in {scene}: {slowest} CPU-s is within 2x of {without:.4} without it"
-                );
-            }
+            let without = (e.units() - part) * SECONDS_PER_WORK_UNIT;
+            let slowest = measured.iter().copied().fold(0.0, f64::max);
+            assert!(
+                slowest / without > 2.0,
+                "{term} in {scene}: {slowest} CPU-s is within 2x of {without:.4} without it"
+            );
+            checked += 1;
         }
+    }
+    assert_eq!(checked, carried.len(), "every carrier is a benched scene");
+}
+
+/// The solver's events without an exact launch (`run::NEWTON_EVENT_UNITS`) are counted where
+/// `path::solve` has none: a point source's sequences through planes that are not parallel
+/// (`michelson`: a splitter at 45° to its mirrors; only its single-event sequences, on one
+/// plane, are launched exactly) and a line source's (`lloyd_mirror`: every sequence, its one
+/// reflection), never a point source's through parallel planes (the two-beam plate and its
+/// shield, stacked plates) nor a walked plate.
+#[test]
+fn the_solver_events_without_an_exact_launch_are_counted_where_there_is_none() {
+    let sp = PointKind::SolvedPointSource as usize;
+    let michelson = estimate(&case("michelson", &|_| {})).counts;
+    assert!(michelson.newton_events[sp] > 0.0, "{michelson:?}");
+    assert!(
+        michelson.newton_events[sp] < michelson.events[sp],
+        "{michelson:?}"
+    );
+    let lloyd = estimate(&case("lloyd_mirror", &|_| {})).counts;
+    assert_eq!(lloyd.newton_events[sp], lloyd.events[sp], "{lloyd:?}");
+    assert!(lloyd.events[sp] > 0.0);
+    for c in [
+        estimate(&case("plate_two_beam_paper", &|_| {})).counts,
+        estimate(&stacked(2, &|_| {})).counts,
+        estimate(&case("plate_airy_s", &|_| {})).counts,
+    ] {
+        assert_eq!(c.newton_events, [0.0; 3], "{c:?}");
     }
 }
 
 /// A spectrum through media whose indices do not depend on the wavelength is traced once per
-/// point (`run::trace_point` moves the arrivals to the other samples), so the walk's nodes and
-/// the per-trace terms do not grow with the samples; the case run's passes over the walked
-/// paths and the per-sample term grow exactly with them.
+/// point (`run::trace_point` moves the arrivals to the other samples), so the walk's nodes,
+/// its events (the case run's passes over the walked paths, formed once per trace) and the
+/// per-trace terms do not grow with the samples; the per-sample term grows exactly with them.
 #[test]
 fn a_non_dispersive_spectrum_is_traced_once_and_every_sample_counts() {
     let with = |samples: usize| {
@@ -319,9 +403,8 @@ fn a_non_dispersive_spectrum_is_traced_once_and_every_sample_counts() {
     assert_eq!(a.linear_units, b.linear_units);
     assert_eq!(a.counts.events, b.counts.events);
     assert_eq!(a.counts.traces, b.counts.traces);
-    let r = 129.0 / 33.0;
-    let ratio = a.counts.sample_events[w] / b.counts.sample_events[w];
-    assert!((ratio - r).abs() < 1e-12 * r);
+    assert_eq!(a.quadratic_units, b.quadratic_units);
+    assert!(a.counts.events[w] > 0.0);
     // 400 angles, each traced once: its samples and its trace.
     for (e, samples) in [(a, 129.0), (b, 33.0)] {
         let fixed = 400.0 * (SAMPLE_UNITS * samples + TRACE_UNITS[w]);
@@ -331,9 +414,9 @@ fn a_non_dispersive_spectrum_is_traced_once_and_every_sample_counts() {
 
 /// A sweep of the wavelength alone keeps the scene, observer and budget of the point before,
 /// so `run::trace_point` moves that point's arrivals instead of tracing (plate_airy_wavelength):
-/// the tracing is counted once, each further point `MOVED_TRACE` of it, while the per-point
-/// terms (the case run's passes over the walked paths, the per-sample and tail-rule terms) grow
-/// with the points.
+/// the tracing (with the case run's passes over the walked paths, per trace) is counted once,
+/// each further point `MOVED_TRACE` of it, while the per-point terms (the per-sample and
+/// tail-rule terms) grow with the points.
 #[test]
 fn a_wavelength_sweep_is_traced_once() {
     let with = |count: usize| {

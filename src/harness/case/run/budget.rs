@@ -133,54 +133,63 @@ pub fn tail_truncation(observed: f64, epsilon: f64, sqrt_source: f64) -> f64 {
 /// Work units (see [`preflight`]) a case may use before it is refused: about 380 CPU-seconds
 /// at [`SECONDS_PER_WORK_UNIT`], about three minutes of wall time on the idle 2-core machine
 /// of this project (more when it is busy). The Airy plate with 2000 internal reflections at
-/// 2000 angles (6.8e8 units; 200 angles ran 27–40 CPU-s) is accepted; three plates stacked in
-/// air under a point source (2.0e8 units, 81–140 CPU-s measured in seven series) too; four are refused. It was
-/// 5e8 while the estimate under-counted the Airy walk by 1.75× (the same 2000-angle plate at
-/// 3.7e8 units): raised with the estimate so that the cap admits the same cases.
+/// 2000 angles (7.4e8 units; 200 angles ran 27–40 CPU-s) is accepted; three plates stacked in
+/// air under a point source (2.1e8 units, 81–140 CPU-s measured in seven series) too; four are
+/// refused. It was 5e8 while the estimate under-counted the Airy walk by 1.75× (the same
+/// 2000-angle plate at 3.7e8 units): raised with the estimate so that the cap admits the same
+/// cases. The seventeenth session's refit kept the scale of the units (the same rate).
 pub const MAX_PATH_EVENTS: f64 = 8.0e8;
 
 /// Measured CPU-seconds (all threads) per work unit, used only to state the estimate in time;
 /// the per-count constants ([`SAMPLE_UNITS`], [`TRACE_UNITS`], [`TAIL_RULE_UNITS`],
-/// [`VISIT_UNITS`], [`DEPTH_SQUARE_UNITS`], [`NODE_UNITS`], [`WALKED_EVENT_UNITS`]) are in
-/// these units. Calibrated with `benches/preflight.rs` (CPU time from
+/// [`VISIT_UNITS`], [`DEPTH_SQUARE_UNITS`], [`SURFACE_DEPTH_SQUARE_UNITS`],
+/// [`NEWTON_EVENT_UNITS`], [`NODE_UNITS`], [`WALKED_EVENT_UNITS`], and the weight
+/// [`MOVED_TRACE`]) are in these units. Calibrated with `benches/preflight.rs` (CPU time from
 /// `CLOCK_PROCESS_CPUTIME_ID`, short scenes repeated to at least 0.5 CPU-s) on the project's
-/// 2-core Intel Xeon VM. Procedure (29 November 2026, sixteenth session): a throw-away
-/// instrumentation of `run::run` measured each benched scene's thread CPU time per phase (set-up
-/// per point, tracing per trace, the per-sample work, the rest) and chose the counts
-/// ([`WorkCounts`]) and the split fixed from it ([`WALKED_TRACE_EVENT_SHARE`]); the constants
-/// were then fitted in log space to the recorded series of the test (`tests/suite/preflight.rs`:
-/// the two idle series, then with the third, recorded on this model's first fit under a load
-/// average of 3), minimising the largest of the series' spreads max/min of measured / estimate
-/// (a soft maximum, Adam from 10 random starts), and rounded; this rate centres the two idle
-/// series' extremes on 1. Result: 0.65–1.16 (spread 1.78) and 0.81–1.53 (1.88) in the idle
-/// series, 1.01–1.79 (1.78) in the loaded one, and 0.64–1.17 (1.83) in a fourth series on
-/// these constants the fit did not see (load average 2.5–3.1, a fast phase of the VM); every
-/// run of every scene within 2×. The plate_two_beam family at 1 and 2 plates and
-/// the Airy plates set the low end, `lloyd_mirror`, `michelson` (a point source over one or
-/// four surfaces, whose solver costs more per candidate than any count here tells) and
-/// `thin_film_on_substrate` the high end. A free estimate per scene could do no better than 1.31 in the two idle series: they
-/// differ by 1.0× (the Airy walk at m = 2000) to 1.75× (`fresnel_rhomb`, a 40-µs run) per
-/// scene. Before (one per-sample term, the solved events at 1.35 units, the rate 4.44e-7):
-/// 0.52–1.75 and 0.65–1.92, spreads 3.4 and 3.0. After the merge with the case run that cuts
-/// the Airy convergence report's rungs from one deep trace (counted so since: one trace at the
-/// deepest rung per point), two idle series in a fast phase of the VM: 0.70–1.25 and 0.59–1.13
-/// (one plate, `plate_two_beam_paper` low; `lloyd_mirror`, `incoherent_sources` high). A
-/// third idle series of the merge, 40 minutes later in a slow phase of the VM (numpy's
-/// accumulation bench at half its speed), put `lloyd_mirror` at 2.00 and the whole series at
-/// 1.07–2.00 of the fitted rate 4.44e-7: the VM's own speed moves the runs by ~1.9× between
-/// its phases, about as much as the model's spread within one series. The rate is therefore
-/// 4.8e-7, the geometric centre of the idle series' ends (0.59 in the fastest phase, 2.00 in
-/// the slowest, at 4.44e-7): every series within 0.55–1.85 of the estimate, each scene's runs
-/// within 2× of it.
+/// 2-core Intel Xeon VM.
+///
+/// Procedure (29 November 2026, seventeenth session). A throw-away instrumentation of the
+/// tracer and of `run::run` (never committed: solver calls, their traces of the planes,
+/// Newton iterations, thread CPU time of discovery, of the solver or walk and of the rest of
+/// each point) on the benched scenes showed what the counts of the sixteenth session missed:
+/// the two-beam plates' solver launches every sequence exactly (one trace of the planes per
+/// sequence, 16 µs per point), `michelson`'s (a tilted splitter) and `lloyd_mirror`'s (a line
+/// source) start from a guess and take 15 and 11 traces per sequence (86 and 14 µs per point):
+/// [`NEWTON_EVENT_UNITS`]; and the walk's passes over the arrivals' paths are per trace since
+/// the sixteenth session's merge (the conditioning terms formed once per trace): the fit leaves
+/// nothing to a per-sample part. The constants were then fitted in log space to the seven
+/// recorded series of `tests/suite/preflight.rs` (numpy, throw-away), minimising the largest of
+/// the seven spreads max/min of measured / estimate within a series (a soft maximum, Adam from
+/// 8 random starts, then sharpened), rounded to three digits, and scaled together so that the
+/// lowest and the highest ratio over all series are symmetric about 1 at this rate (unchanged,
+/// so that the units keep their scale). Result: spreads 1.454, 1.423, 1.453, 1.460, 1.425,
+/// 1.461, 1.454 in the seven series (before: 1.78, 1.88, 1.78, 1.83, 1.80, 1.92, 1.87), all
+/// runs within 0.617–1.623 of the estimate (before: 0.545–1.846). One free number per scene
+/// (with `plate_airy_p` and `plate_airy_s`, whose counts are the same, as one) could do no
+/// better than 1.40 in the worst series: what is left is mostly the runs' own scatter between
+/// series (`bk7_dispersion` over `thin_film_on_substrate` from 0.95 to 1.40, the case run having
+/// changed between the fourth and the fifth series). The scenes at the ends: the Airy plates,
+/// `bk7_dispersion` and two stacked plates low; `brewster_extinction`, `incoherent_sources`
+/// and `plate_two_beam_unpolarized` high. Checked on two series the fit did not see (21:29 and
+/// 21:33 UTC, another helper's build running, load average 1.8–4.1): spreads 1.84 (the VM sped
+/// up half-way through it: `plate_two_beam_paper` at 1.22 and the same case as `1 stacked
+/// plate(s)` at 0.87 minutes later) and 1.33, every run within 0.79–1.45 of the estimate; the
+/// sixteenth session's constants on the same two series: 2.50 and 1.83, 0.68–1.69.
+/// History: the sixteenth session fitted the same way on
+/// three series (0.65–1.16 and 0.81–1.53 idle, 1.01–1.79 loaded) and set this rate, 4.8e-7, as
+/// the geometric centre of the idle series' ends when a third idle series, 40 minutes after two
+/// others, ran 1.9× slower (the VM's own phases: numpy's accumulation bench at half its speed).
 pub const SECONDS_PER_WORK_UNIT: f64 = 4.8e-7;
 
 /// The cost of moving a point's traced arrivals to the next point's wavelength (the same
 /// scene, observer and budget: `trace_point` relabels every arrival instead of tracing), as a
-/// fraction of tracing them: plate_airy_wavelength (301 wavelengths, one trace) ran at 1.8
-/// times its estimate when a moved point counted no tracing (`benches/preflight.rs`). The
-/// instrumented run shows why: the parallel workers each start with a trace of their own
-/// (19 traces of 301 points), while a move itself costs next to nothing.
-pub const MOVED_TRACE: f64 = 0.15;
+/// fraction of tracing them. It was 0.15 when plate_airy_wavelength (301 wavelengths, one
+/// trace) ran at 1.8 times its estimate with a moved point counted as no tracing (the parallel
+/// workers each start with a trace of their own: 19 traces of 301 points, while a move itself
+/// costs next to nothing); refitted with the other constants ([`SECONDS_PER_WORK_UNIT`]) to
+/// 0.05: at 0.15 the sweep sat at the low end of every series (0.60–1.08 of its estimate), its
+/// tail-rule set-up ([`TAIL_RULE_UNITS`]) now priced higher.
+pub const MOVED_TRACE: f64 = 0.05;
 
 /// The reflected orders of the rungs of the bounce-convergence report of monochrome Airy cases
 /// (`convergence::convergence`), each traced at 2·orders − 1 internal reflections while that is
@@ -204,12 +213,11 @@ pub enum PointKind {
 /// of one [`PointKind`] (the index). The sequence tree is enumerated as the tracer discovers it
 /// (`trace::plan`) at one representative point (the largest budget m), and another point's
 /// count is that one times r = (m + 2)/(m_rep + 2) for what grows like m (nodes of the walk) or
-/// r² for what grows like m² (discovery visits and Σ depth² of a solved point, events), times
-/// the traces of the point for what is traced and times its spectral samples for what every
-/// sample repeats. A point's traces: 1 for a spectrum through non-dispersive media (traced once
-/// and moved to the other wavelengths), [`MOVED_TRACE`] for a point that moves the previous
-/// point's arrivals, else its samples; a point of the bounce-convergence report with rungs
-/// beyond its budget adds one trace at the deepest rung and one sample's passes per such rung.
+/// r² for what grows like m² (discovery visits, Σ depth² and the events of the candidates),
+/// times the traces of the point. A point's traces: 1 for a spectrum through non-dispersive
+/// media (traced once and moved to the other wavelengths), [`MOVED_TRACE`] for a point that
+/// moves the previous point's arrivals, else its samples; a point of the bounce-convergence
+/// report with rungs beyond its budget adds one trace at the deepest rung.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 pub struct WorkCounts {
     /// Spectral samples of every probe point.
@@ -222,63 +230,92 @@ pub struct WorkCounts {
     pub visits: [f64; 3],
     /// Σ over the candidate sequences of their depth squared, per trace.
     pub depth_squares: [f64; 3],
+    /// Σ over the candidate sequences of their depth squared times the surfaces of the scene,
+    /// per trace ([`SURFACE_DEPTH_SQUARE_UNITS`]).
+    pub surface_depth_squares: [f64; 3],
+    /// Events of the candidate sequences the path solver cannot launch exactly, per trace
+    /// ([`NEWTON_EVENT_UNITS`]).
+    pub newton_events: [f64; 3],
     /// Nodes of the tree per trace.
     pub nodes: [f64; 3],
     /// Events of every candidate sequence, per trace.
     pub events: [f64; 3],
-    /// Events of every candidate sequence, per spectral sample.
-    pub sample_events: [f64; 3],
 }
 
 /// Work units per spectral sample of a probe point, whatever its kind: the contributions at
-/// every fidelity level, the closed-form references, the conditioning terms (3.6 µs measured
-/// per sample of coherence_length, 129 samples per point, with a per-phase instrumentation of
-/// `run::run` under `benches/preflight.rs`, 29 November 2026; 4–12 µs for a point's only
-/// sample, whose set-up [`TRACE_UNITS`] carries).
-pub const SAMPLE_UNITS: f64 = 6.9;
+/// every fidelity level, the closed-form references, the conditioning terms' wavelength parts
+/// (4.3 µs measured per sample of coherence_length, 129 samples per point, with the per-phase
+/// instrumentation of [`SECONDS_PER_WORK_UNIT`]). Fitted to the seven series with the other
+/// constants ([`SECONDS_PER_WORK_UNIT`]); carried by coherence_length (0.9 of its estimate).
+pub const SAMPLE_UNITS: f64 = 9.88;
 
 /// Work units per trace, by [`PointKind`], besides the counted tree: the scene built, the
-/// probe rays formed, the arrivals' rays and the per-point closed forms (measured 5 µs for two
-/// point sources without surfaces, 25–30 µs for two to four surfaces under a point source or
-/// plane waves onto a point, 17–50 µs for the smallest walked plates). Plane waves solved onto
-/// a point (`tir_interference`, `wedge_fizeau`) cost their trace almost whatever the tree.
-pub const TRACE_UNITS: [f64; 3] = [18.7, 71.0, 30.0];
+/// probe rays formed, the arrivals' rays and the per-point closed forms (measured 5–15 µs of
+/// set-up per point besides discovery and solving under a point source, 13–28 µs per walked
+/// point without the tail rule). Plane waves solved onto a point (`tir_interference`,
+/// `wedge_fizeau`) cost their trace almost whatever the tree. Fitted to the seven series
+/// ([`SECONDS_PER_WORK_UNIT`]).
+pub const TRACE_UNITS: [f64; 3] = [21.2, 39.4, 24.5];
 
 /// Work units per probe point whose internal-reflection budget the Airy tail rule sets: the
-/// tail bounds of both polarizations solved for the orders, and the film's closed forms
-/// (measured 20–29 µs per point of set-up alone in the Airy library cases, against 1–4 µs
-/// without the rule).
-pub const TAIL_RULE_UNITS: f64 = 84.0;
+/// tail bounds of both polarizations searched order by order, and the film's closed forms
+/// (measured 49–75 µs per point besides the walk in the tail-rule library cases, against
+/// 13–28 µs without the rule). Fitted to the seven series ([`SECONDS_PER_WORK_UNIT`]);
+/// carried by plate_airy_wavelength.
+pub const TAIL_RULE_UNITS: f64 = 141.0;
 
-/// Work units per discovery visit (a probe ray at a node of the tree), by [`PointKind`]; the
-/// walk's discovery is priced per node ([`NODE_UNITS`]). Plane waves onto a point: the fit
-/// leaves almost nothing to their visits ([`TRACE_UNITS`] carries their trace), kept above zero
-/// so that their estimate grows with the tree.
-pub const VISIT_UNITS: [f64; 3] = [2.03, 0.016, 0.0];
+/// Work units per discovery visit (a probe ray at a node of the tree) of a point lit by a point
+/// source, by [`PointKind`]. Plane waves onto a point: the fit leaves nothing to their visits
+/// ([`TRACE_UNITS`] and [`DEPTH_SQUARE_UNITS`] carry them); the walk's discovery is priced per
+/// node ([`NODE_UNITS`]). Fitted to the seven series ([`SECONDS_PER_WORK_UNIT`]); the wide
+/// trees of stacked plates carry it.
+pub const VISIT_UNITS: [f64; 3] = [1.31, 0.0, 0.0];
 
-/// Work units per squared depth of a solved candidate sequence (Σ d² over the candidates):
-/// the solver's Newton iterations on a path of d events cost ∝ d each, and a longer path takes
-/// more of them. This is what puts 40 internal reflections (few deep sequences) and two or
-/// three stacked plates (many shallow ones) on one scale: per event or per visit alone, the
-/// deep paths ran 1.7 times slower than the wide tree.
-pub const DEPTH_SQUARE_UNITS: [f64; 3] = [0.0213, 0.0213, 0.0];
+/// Work units per squared depth of a solved candidate sequence (Σ d² over the candidates), by
+/// [`PointKind`]: the solver's Newton iterations on a path of d events cost ∝ d each, and a
+/// longer path takes more of them. This is what puts 40 internal reflections (few deep
+/// sequences) and two or three stacked plates (many shallow ones) on one scale. Plane waves onto
+/// a point are never launched exactly (the image method's guess, then Newton): 2.05 units,
+/// against 0.018 where a point source's sequences through parallel planes are
+/// ([`NEWTON_EVENT_UNITS`] prices the others). Fitted to the seven series
+/// ([`SECONDS_PER_WORK_UNIT`]).
+pub const DEPTH_SQUARE_UNITS: [f64; 3] = [0.0180, 2.05, 0.0];
+
+/// Work units per squared depth of a solved candidate sequence times the surfaces of the scene
+/// (Σ d² · surfaces), by [`PointKind`]: each trace of a path of d events looks for an
+/// obstruction on every surface at every segment. Under a point source it separates the stacked
+/// plates (5 and 7 surfaces with the shield) from 40 internal reflections in one plate (3): with
+/// Σ d² alone, two plates sat 1.1–1.5 times lower than three in every series. Fitted to the seven
+/// series ([`SECONDS_PER_WORK_UNIT`]); plane waves onto a point: nothing left to it.
+pub const SURFACE_DEPTH_SQUARE_UNITS: [f64; 3] = [0.00645, 0.0, 0.0];
+
+/// Work units per event of a candidate sequence that `path::solve` cannot launch exactly, per
+/// trace, by [`PointKind`]: a point source's sequence through planes parallel to its first
+/// event's is launched by Snell's invariant (`parallel_stack_launch`: one trace of the planes);
+/// any other (a line source's, a point source's through tilted planes) starts from the image
+/// method's guess, steepened until the sequence can be traced and iterated by Newton, each step
+/// a trace of the sequence. Instrumented (see [`SECONDS_PER_WORK_UNIT`]): 15 traces of the
+/// planes per sequence in `michelson` (86 µs of solving per point against 16 in the two-beam
+/// plate with fewer events), 11 in `lloyd_mirror`, 1 in the two-beam plates. Without it
+/// `michelson` and `lloyd_mirror` sat at the high end of every series and the two-beam plates
+/// at the low end (their discovery visits priced for both). Plane waves onto a point are never
+/// launched exactly ([`DEPTH_SQUARE_UNITS`] carries them): nothing here. Fitted to the seven
+/// series ([`SECONDS_PER_WORK_UNIT`]); carried by `michelson` (0.45 of its estimate).
+pub const NEWTON_EVENT_UNITS: [f64; 3] = [7.30, 0.0, 0.0];
 
 /// Work units per node of a walked tree per trace: its discovery (the probe rays) and the walk
-/// tracing it once (both polarized models, extents and blockers).
-pub const NODE_UNITS: [f64; 3] = [0.0, 0.0, 5.06];
+/// tracing it once (both polarized models, extents and blockers): measured 1.9–2.2 µs of walk
+/// and 0.2–0.7 µs of discovery per node. Fitted to the seven series ([`SECONDS_PER_WORK_UNIT`]).
+pub const NODE_UNITS: [f64; 3] = [0.0, 0.0, 5.43];
 
-/// Work units per event of every walked candidate sequence per spectral sample: the case run
-/// passes over every arrival's whole path (the phase ledger, the rounding and representation
-/// terms of `harness::conditioning`) at every sample, so an Airy point with m internal
-/// reflections costs a part ∝ m². The walk's own copy of each arrival's path adds
-/// [`WALKED_TRACE_EVENT_SHARE`] of this per event per trace. Measured on the Airy plate at
-/// m = 2000 (200 angles): 26.0 CPU-s in the per-sample passes and 4.5 in the walk, of 35.6.
-pub const WALKED_EVENT_UNITS: f64 = 0.068;
-
-/// The walk's per-event cost per trace relative to [`WALKED_EVENT_UNITS`]: 4.46 / 25.96, the
-/// CPU-seconds of the walk and of the per-sample passes in the Airy plate at m = 2000
-/// (instrumented `run::run`, see [`SAMPLE_UNITS`]).
-pub const WALKED_TRACE_EVENT_SHARE: f64 = 0.17;
+/// Work units per event of every walked candidate sequence per trace: the walk's copy of each
+/// arrival's path, and the case run's passes over it (the phase ledger, the rounding and
+/// representation terms of `harness::conditioning`, formed once per trace since the sixteenth
+/// session's merge), so an Airy point with m internal reflections costs a part ∝ m². Before,
+/// the passes were priced per spectral sample with the walk's part a fixed 0.17 of them; the
+/// seven series leave nothing to a per-sample part. Fitted to the seven series
+/// ([`SECONDS_PER_WORK_UNIT`]); carried by the Airy plate at m = 2000 (0.94 of its estimate).
+pub const WALKED_EVENT_UNITS: f64 = 0.0868;
 
 impl WorkCounts {
     /// The work units of the counts in three parts: (∝ m per point: the walk's nodes;
@@ -290,12 +327,12 @@ impl WorkCounts {
         for k in 0..3 {
             fixed += TRACE_UNITS[k] * self.traces[k];
             linear += NODE_UNITS[k] * self.nodes[k];
-            quadratic +=
-                VISIT_UNITS[k] * self.visits[k] + DEPTH_SQUARE_UNITS[k] * self.depth_squares[k];
+            quadratic += VISIT_UNITS[k] * self.visits[k]
+                + DEPTH_SQUARE_UNITS[k] * self.depth_squares[k]
+                + SURFACE_DEPTH_SQUARE_UNITS[k] * self.surface_depth_squares[k]
+                + NEWTON_EVENT_UNITS[k] * self.newton_events[k];
         }
-        let walked = PointKind::Walked as usize;
-        quadratic += WALKED_EVENT_UNITS
-            * (self.sample_events[walked] + WALKED_TRACE_EVENT_SHARE * self.events[walked]);
+        quadratic += WALKED_EVENT_UNITS * self.events[PointKind::Walked as usize];
         (linear, quadratic, fixed)
     }
 }
@@ -311,6 +348,10 @@ struct TreeCounts {
     events: f64,
     /// Σ depth² over the candidate sequences.
     depth_squares: f64,
+    /// Σ depth² over the candidate sequences times the surfaces of the scene.
+    surface_depth_squares: f64,
+    /// Events of the candidate sequences the solver cannot launch exactly ([`NEWTON_EVENT_UNITS`]).
+    newton_events: f64,
 }
 
 impl TreeCounts {
@@ -320,17 +361,17 @@ impl TreeCounts {
             nodes: self.nodes * s,
             events: self.events * s,
             depth_squares: self.depth_squares * s,
+            surface_depth_squares: self.surface_depth_squares * s,
+            newton_events: self.newton_events * s,
         }
     }
 }
 
-/// A point kind's weights: Σ traces·r, Σ traces·r², Σ samples·r² over its points,
-/// r = (m + 2)/(m_rep + 2).
+/// A point kind's weights: Σ traces·r, Σ traces·r² over its points, r = (m + 2)/(m_rep + 2).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
 struct Weights {
     trace_linear: f64,
     trace_quadratic: f64,
-    sample_quadratic: f64,
 }
 
 /// The tree's counts weighted for every point kind (the per-point counts, `samples`,
@@ -345,9 +386,10 @@ fn weighted(tree: &TreeCounts, weights: &[Weights; 3]) -> WorkCounts {
         } else {
             c.visits[k] = tree.visits * w.trace_quadratic;
             c.depth_squares[k] = tree.depth_squares * w.trace_quadratic;
+            c.surface_depth_squares[k] = tree.surface_depth_squares * w.trace_quadratic;
+            c.newton_events[k] = tree.newton_events * w.trace_quadratic;
         }
         c.events[k] = tree.events * w.trace_quadratic;
-        c.sample_events[k] = tree.events * w.sample_quadratic;
     }
     c
 }
@@ -385,11 +427,40 @@ fn tree_counts(
         };
         let plan = trace::plan(&built.scene, &optics, &probe, &limits);
         let mut t = TreeCounts::default();
-        for tree in &plan.sequences {
+        for (tree, source) in plan.sequences.iter().zip(&built.scene.sources) {
             t.nodes += tree.nodes().len() as f64;
-            for n in tree.nodes().iter().filter(|n| n.candidate) {
-                t.events += n.depth as f64;
-                t.depth_squares += (n.depth * n.depth) as f64;
+            // `path::solve` launches a point source's sequence through planes parallel to its
+            // first event's exactly (Snell's invariant, `parallel_stack_launch`); any other
+            // (a line source's, a plane wave's onto a point, a point source's through tilted
+            // planes) starts from the image method's guess, steepened and iterated by Newton,
+            // each step a trace of the sequence. `stacked[d - 1]`: the beginning of depth d
+            // on the current branch lies on planes parallel to its first event's (depth first
+            // order: a node's beginnings are the nodes before it on the branch).
+            let point = matches!(source.emitter, Emitter::Point { .. });
+            let surfaces = built.scene.surfaces.len();
+            let mut stacked: Vec<bool> = Vec::new();
+            let mut first = DVec3::ZERO;
+            for n in tree.nodes() {
+                if let Some(ev) = n.event {
+                    let normal = built.scene.surfaces[ev.surface].plane.normal;
+                    stacked.truncate(n.depth - 1);
+                    let parallel = match stacked.last() {
+                        None => {
+                            first = normal;
+                            true
+                        }
+                        Some(&s) => s && normal.cross(first).length_squared() <= 1e-30,
+                    };
+                    stacked.push(parallel);
+                }
+                if n.candidate {
+                    t.events += n.depth as f64;
+                    t.depth_squares += (n.depth * n.depth) as f64;
+                    t.surface_depth_squares += (n.depth * n.depth * surfaces) as f64;
+                    if !(point && stacked.last().copied().unwrap_or(true)) {
+                        t.newton_events += n.depth as f64;
+                    }
+                }
             }
         }
         t.visits = rays * t.nodes;
@@ -512,15 +583,14 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
         budgets.iter().position(|b| b.0 == worst).unwrap_or(centre)
     };
     let mut weights = [Weights::default(); 3];
-    let mut add = |m: usize, k: PointKind, traces: f64, samples: f64| {
+    let mut add = |m: usize, k: PointKind, traces: f64| {
         let r = (m as f64 + 2.0) / (worst as f64 + 2.0);
         let w = &mut weights[k as usize];
         w.trace_linear += traces * r;
         w.trace_quadratic += traces * r * r;
-        w.sample_quadratic += samples * r * r;
     };
-    for &(m, k, traces, samples) in &budgets {
-        add(m, k, traces, samples);
+    for &(m, k, traces, _) in &budgets {
+        add(m, k, traces);
     }
     let convergence_report = matches!(spec.light, Light::Monochrome { .. })
         && spec.references.iter().any(|r| {
@@ -538,23 +608,21 @@ pub fn work_estimate(case: &Case) -> Result<WorkEstimate, CaseError> {
         // the point's own budget is summed from the arrivals its run traced
         // (`run::orders_within`); a point with a rung beyond its budget traces the deepest
         // rung once, scaled like a point of that budget, and sums every such rung from it
-        // (one sample's passes per rung).
+        // (the passes over the paths are per trace, [`WALKED_EVENT_UNITS`]: the rungs summed
+        // add nothing the counts price).
         let stride = points.len().div_ceil(24).max(1);
         let sampled: Vec<(usize, PointKind)> =
             budgets.iter().step_by(stride).map(|b| (b.0, b.1)).collect();
         let top = sampled.iter().map(|b| b.0).max().unwrap_or(0).max(1);
-        let rungs: Vec<usize> = CONVERGENCE_ORDERS
+        let deepest = CONVERGENCE_ORDERS
             .iter()
             .map(|o| 2 * o - 1)
             .take_while(|&internal| internal <= top)
-            .collect();
-        let deepest = rungs.last().copied().unwrap_or(0);
+            .last()
+            .unwrap_or(0);
         for &(own, k) in &sampled {
             if deepest > own {
-                add(deepest, k, 1.0, 0.0);
-            }
-            for &internal in rungs.iter().filter(|&&internal| internal > own) {
-                add(internal, k, 0.0, 1.0);
+                add(deepest, k, 1.0);
             }
         }
     }

@@ -39,10 +39,10 @@ pub use arrivals::trace_settings;
 use arrivals::*;
 use budget::*;
 pub use budget::{
-    CLOSED_TAIL_ORDERS, DEPTH_SQUARE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, NODE_UNITS, PointKind,
-    SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, TAIL_RULE_UNITS, TRACE_UNITS, VISIT_UNITS,
-    WALKED_EVENT_UNITS, WALKED_TRACE_EVENT_SHARE, WorkCounts, WorkEstimate, preflight,
-    work_estimate,
+    CLOSED_TAIL_ORDERS, DEPTH_SQUARE_UNITS, MAX_PATH_EVENTS, MOVED_TRACE, NEWTON_EVENT_UNITS,
+    NODE_UNITS, PointKind, SAMPLE_UNITS, SECONDS_PER_WORK_UNIT, SURFACE_DEPTH_SQUARE_UNITS,
+    TAIL_RULE_UNITS, TRACE_UNITS, VISIT_UNITS, WALKED_EVENT_UNITS, WorkCounts, WorkEstimate,
+    preflight, work_estimate,
 };
 use convergence::*;
 pub use convergence::{convergence_traced, orders_within};
