@@ -14,11 +14,16 @@
 //! find the group of a contribution by a compare against the ids of the first four groups of
 //! the point (the AVX2 kernel one 4-lane compare per contribution; the AVX-512F kernel, before
 //! the sums, four 8-lane compares per eight contributions that give the byte offset of each
-//! one's group sum, id 0 by mask; `GroupTable::group` of `mod.rs` once per distinct new id or
-//! fifth and later group of the eight), and form `E·e^{i2πc}` and the TwoSum update with the operations
+//! one's group sum, id 0 by mask; while the point has at most four groups, the new ones of the
+//! eight created at once, in order of first appearance, by shifted compares and one compress;
+//! `GroupTable::group` of `mod.rs` once per distinct new id or fifth and later group of the
+//! eight otherwise), and form `E·e^{i2πc}` and the TwoSum update with the operations
 //! and the operand order of `GroupTable::add_field` (no FMA, no reassociation), each group's
 //! contributions in input order: in a 4-lane (x, y) and a 2-lane (z)
-//! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
+//! register with AVX2, in one 8-lane register with AVX-512F (the field read by one unmasked
+//! 64-byte load, lanes 6, 7 the next field's x, which reach only the sums' padding; the last
+//! field of the columns by a masked load; the sine broadcast from a (−sin, sin) pair written
+//! after the phasor loop). Every group sum,
 //! compensation term and intensity has the bits of [`Accumulator::add`], whichever kernel runs
 //! (`tests/suite/accumulate.rs` checks each kernel the CPU has through
 //! [`Accumulator::extend_columns_using`] and [`accumulate_columns_using`]). The kernels ask for
@@ -133,6 +138,42 @@
 //! (one pass per group over a 64-bit mask of its contributions, no store and reload of the sum
 //! between two contributions, the next block's fields prefetched at the start of the sums):
 //! slower, 1 thread plain on the 1 M case 86–114 against 119–205 M/s (mean), L2-resident no faster.
+//!
+//! Seventeenth session (29 November 2026, 21:00–21:45 UTC, the VM shared with two other
+//! helpers' builds, load average 2–6 throughout; no hardware counters, so `perf record` with the
+//! CPU clock, and a dependent-`imul` loop to calibrate the clock: ~2.4 GHz). In the profile of
+//! `cpu_rates accumulate-l2` (the L2-resident rows alone) the plain kernel spent about a third
+//! of its samples in the phasor loop (6.9 operations on the two 512-bit ports per
+//! contribution), 38 % in the sums and 17 % finding group offsets, most of that in the first
+//! chunk of each point, where every id is new; `Accumulator::intensity` 5–6 % of the whole.
+//! Three changes, kept: each field by one unmasked 64-byte load (no mask register to rebuild
+//! per contribution), the sine as a broadcast (−sin, sin) pair instead of an xor per
+//! contribution (one xor and two permutes per eight, after the phasor loop), and a point's
+//! first four groups created from a chunk at once (no call and no data-dependent loop per new
+//! id). Interleaved, eight rounds each of the bench binary before (74d265e) and after, best
+//! rep M/s, best (median) of the eight: at 21:26 UTC (load 4.0–4.5) L2-resident plain 234
+//! (224) → 239 (230), compensated 177 (170) → 191 (184); at 21:42 (load 1.7–2.1) plain 251
+//! (247) → 257 (246), compensated 190 (184) → 205 (197): compensated +7–8 %, plain within the
+//! noise. Issue #14's comparison in the same session (`accumulate_ratio.py 3`, four
+//! alternations, 12 rounds each, 21:42–21:44 UTC, load 2.1–3.0, numpy 7.9–13.3 M/s best): 2
+//! threads plain best rep 136–448 M/s (median of the rounds 210) before, 130–425 (230) after;
+//! the 2-thread rows ran at about the 1-thread rate in most rounds (the other core was busy),
+//! so this series does not show the goal of issue #14 either way.
+//!
+//! What bounds the kernel here: one group (`G=1`, every contribution in the same sum) runs at
+//! ~157 M/s, ~15 cycles a contribution, the latency of a group sum's store, reload and add;
+//! two groups at 213, four at 230 M/s (best rep, same run): with four groups that chain costs
+//! a few per cent. With the memory system shared (the 1 M case while the 1-thread streaming
+//! read of the same 64 MiB ran at 110–150 M/s instead of 320 on the idle VM) the 1-thread 1 M
+//! rows ran at the streaming read's rate before and after: about 16 outstanding line fills a
+//! core at DRAM latency, which no change of the arithmetic moves.
+//!
+//! Not kept (same session, interleaved): the three columns also asked for four blocks ahead
+//! into L2 (`prefetcht1`, once a line): slower in the shared phase, 1 thread plain on the 1 M
+//! case 111 → 100 M/s and compensated 104 → 87 (median of six), as the fifteenth session
+//! found at the idle VM; and phasors, group offsets and sums in chunks of 16 (the next chunk's
+//! phasor arithmetic in flight with the previous chunk's sums): L2-resident plain best 254 →
+//! 229 M/s, compensated 204 → 188 (eight rounds), the 1 M rows no faster.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
