@@ -158,7 +158,17 @@
 //! alternations, 12 rounds each, 21:42–21:44 UTC, load 2.1–3.0, numpy 7.9–13.3 M/s best): 2
 //! threads plain best rep 136–448 M/s (median of the rounds 210) before, 130–425 (230) after;
 //! the 2-thread rows ran at about the 1-thread rate in most rounds (the other core was busy),
-//! so this series does not show the goal of issue #14 either way.
+//! so this series does not show the goal of issue #14 either way. The same at 21:49 UTC, once
+//! the other builds had paused (load 1.2–1.5, numpy 8.0–12.0 M/s best): 2 threads plain best
+//! rep 258–434 M/s (median of the 12 rounds 353) before, 279–421 (322) after, ratio best/best
+//! 21.8–50× (11 of 12 rounds ≥ 25×) before, 25.1–51.7× (12 of 12) after; `cpu_rates
+//! accumulate`, two interleaved series of five and six runs (21:50–21:51 UTC, load 1.2–1.5),
+//! median (best) of the runs' best reps, before → after: 1 M, 2 threads plain 284 (345) → 316
+//! (356) and 269 (399) → 332 (416); compensated 232 (311) → 296 (346) and 236 (245) → 254
+//! (351); L2-resident plain 189 (235) → 239 (247) and 201 (234) → 233 (246), compensated
+//! 141 (177) → 190 (197) and 155 (177) → 189 (204); the 2-thread streaming read 536–575 in
+//! both. Plain gains between −9 % and +23 % by statistic and series: not the +15 % of the
+//! goal beyond the noise of this shared VM; the lead's idle-VM series decides.
 //!
 //! What bounds the kernel here: one group (`G=1`, every contribution in the same sum) runs at
 //! ~157 M/s, ~15 cycles a contribution, the latency of a group sum's store, reload and add;
@@ -173,7 +183,10 @@
 //! case 111 → 100 M/s and compensated 104 → 87 (median of six), as the fifteenth session
 //! found at the idle VM; and phasors, group offsets and sums in chunks of 16 (the next chunk's
 //! phasor arithmetic in flight with the previous chunk's sums): L2-resident plain best 254 →
-//! 229 M/s, compensated 204 → 188 (eight rounds), the 1 M rows no faster.
+//! 229 M/s, compensated 204 → 188 (eight rounds), the 1 M rows no faster; and
+//! `Accumulator::intensity` for the AVX-512F kernel four groups at a time (their `(s + c)²`
+//! transposed, each group's six squares added in order in one lane): L2-resident plain 239
+//! (229) against 238 (230) M/s best (median) of ten rounds, no gain.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
