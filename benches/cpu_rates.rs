@@ -9,6 +9,7 @@
 //! ```text
 //! cargo bench -p fringe-benches --bench cpu_rates -- accumulate # 1 M contributions, 16 k points, 4 groups (and 16 k, L2-resident)
 //! cargo bench -p fringe-benches --bench cpu_rates -- accumulate-2t # only the 2-thread columns, 50 reps
+//! cargo bench -p fringe-benches --bench cpu_rates -- accumulate-l2 # only the L2-resident columns, 6400 reps (for a profiler)
 //! cargo bench -p fringe-benches --bench cpu_rates -- spectrum # traced Airy spectrum, 401 λ
 //! ```
 //!
@@ -149,21 +150,7 @@ fn accumulate() {
     // The same work L2-resident (16 k contributions, 256 points, 1 MiB of columns): the
     // compute rate alone, which other processes' memory traffic on a shared machine does not
     // change as much as the 64 MiB case above (same total: 20 · 2^20 contributions).
-    let (t2, p2) = (1usize << 14, 1usize << 8);
-    let (d2, offsets2) = data(t2, p2, g, 2);
-    let cols2 = ContributionColumns::from(&d2[..]);
-    let mut out2 = vec![0.0; p2];
-    for (name, s) in SUMMATIONS {
-        measure(
-            &format!("accumulate T16k_P256_G4 columns 1t {name} (L2)"),
-            20 * (t / t2),
-            t2,
-            || {
-                accumulate_columns(black_box(&cols2), &offsets2, s, &mut out2);
-                black_box(&out2);
-            },
-        );
-    }
+    accumulate_l2(20);
     // The memory floor: a bare streaming read of the same 64 MiB (8 words per contribution).
     let words = accumulation_data::as_words(&d);
     measure("accumulate T1M_P16k_G4 stream read 1t", 20, t, || {
@@ -172,6 +159,27 @@ fn accumulate() {
     measure("accumulate T1M_P16k_G4 stream read 2t", 20, t, || {
         black_box(pool.install(|| accumulation_data::stream_sum_par(black_box(words))));
     });
+}
+
+/// The L2-resident rows of [`accumulate`] (16 k contributions, 256 points, 4 groups, 1 MiB of
+/// columns), `rounds` · 64 repetitions each: the compute rate alone (`accumulate-l2`: 100 rounds,
+/// for a profiler).
+fn accumulate_l2(rounds: usize) {
+    let (t2, p2, g) = (1usize << 14, 1usize << 8, 4u64);
+    let (d2, offsets2) = data(t2, p2, g, 2);
+    let cols2 = ContributionColumns::from(&d2[..]);
+    let mut out2 = vec![0.0; p2];
+    for (name, s) in SUMMATIONS {
+        measure(
+            &format!("accumulate T16k_P256_G4 columns 1t {name} (L2)"),
+            rounds * 64,
+            t2,
+            || {
+                accumulate_columns(black_box(&cols2), &offsets2, s, &mut out2);
+                black_box(&out2);
+            },
+        );
+    }
 }
 
 /// A copy of `src` in memory asked to be backed by 2 MiB pages (`madvise(MADV_HUGEPAGE)` on the
@@ -451,10 +459,11 @@ fn main() {
     match std::env::args().nth(1).as_deref() {
         Some("accumulate") => accumulate(),
         Some("accumulate-2t") => accumulate_2t(),
+        Some("accumulate-l2") => accumulate_l2(100),
         Some("spectrum") => spectrum(),
         Some("bk7") => spectrum_dispersive(),
         _ => {
-            eprintln!("usage: cpu_rates accumulate|accumulate-2t|spectrum|bk7");
+            eprintln!("usage: cpu_rates accumulate|accumulate-2t|accumulate-l2|spectrum|bk7");
             std::process::exit(2);
         }
     }

@@ -14,11 +14,16 @@
 //! find the group of a contribution by a compare against the ids of the first four groups of
 //! the point (the AVX2 kernel one 4-lane compare per contribution; the AVX-512F kernel, before
 //! the sums, four 8-lane compares per eight contributions that give the byte offset of each
-//! one's group sum, id 0 by mask; `GroupTable::group` of `mod.rs` once per distinct new id or
-//! fifth and later group of the eight), and form `E·e^{i2πc}` and the TwoSum update with the operations
+//! one's group sum, id 0 by mask; while the point has at most four groups, the new ones of the
+//! eight created at once, in order of first appearance, by shifted compares and one compress;
+//! `GroupTable::group` of `mod.rs` once per distinct new id or fifth and later group of the
+//! eight otherwise), and form `E·e^{i2πc}` and the TwoSum update with the operations
 //! and the operand order of `GroupTable::add_field` (no FMA, no reassociation), each group's
 //! contributions in input order: in a 4-lane (x, y) and a 2-lane (z)
-//! register with AVX2, in one 8-lane register with AVX-512F (lanes 6, 7 zero). Every group sum,
+//! register with AVX2, in one 8-lane register with AVX-512F (the field read by one unmasked
+//! 64-byte load, lanes 6, 7 the next field's x, which reach only the sums' padding; the last
+//! field of the columns by a masked load; the sine broadcast from a (−sin, sin) pair written
+//! after the phasor loop). Every group sum,
 //! compensation term and intensity has the bits of [`Accumulator::add`], whichever kernel runs
 //! (`tests/suite/accumulate.rs` checks each kernel the CPU has through
 //! [`Accumulator::extend_columns_using`] and [`accumulate_columns_using`]). The kernels ask for
@@ -133,6 +138,55 @@
 //! (one pass per group over a 64-bit mask of its contributions, no store and reload of the sum
 //! between two contributions, the next block's fields prefetched at the start of the sums):
 //! slower, 1 thread plain on the 1 M case 86–114 against 119–205 M/s (mean), L2-resident no faster.
+//!
+//! Seventeenth session (29 November 2026, 21:00–21:45 UTC, the VM shared with two other
+//! helpers' builds, load average 2–6 throughout; no hardware counters, so `perf record` with the
+//! CPU clock, and a dependent-`imul` loop to calibrate the clock: ~2.4 GHz). In the profile of
+//! `cpu_rates accumulate-l2` (the L2-resident rows alone) the plain kernel spent about a third
+//! of its samples in the phasor loop (6.9 operations on the two 512-bit ports per
+//! contribution), 38 % in the sums and 17 % finding group offsets, most of that in the first
+//! chunk of each point, where every id is new; `Accumulator::intensity` 5–6 % of the whole.
+//! Three changes, kept: each field by one unmasked 64-byte load (no mask register to rebuild
+//! per contribution), the sine as a broadcast (−sin, sin) pair instead of an xor per
+//! contribution (one xor and two permutes per eight, after the phasor loop), and a point's
+//! first four groups created from a chunk at once (no call and no data-dependent loop per new
+//! id). Interleaved, eight rounds each of the bench binary before (74d265e) and after, best
+//! rep M/s, best (median) of the eight: at 21:26 UTC (load 4.0–4.5) L2-resident plain 234
+//! (224) → 239 (230), compensated 177 (170) → 191 (184); at 21:42 (load 1.7–2.1) plain 251
+//! (247) → 257 (246), compensated 190 (184) → 205 (197): compensated +7–8 %, plain within the
+//! noise. Issue #14's comparison in the same session (`accumulate_ratio.py 3`, four
+//! alternations, 12 rounds each, 21:42–21:44 UTC, load 2.1–3.0, numpy 7.9–13.3 M/s best): 2
+//! threads plain best rep 136–448 M/s (median of the rounds 210) before, 130–425 (230) after;
+//! the 2-thread rows ran at about the 1-thread rate in most rounds (the other core was busy),
+//! so this series does not show the goal of issue #14 either way. The same at 21:49 UTC, once
+//! the other builds had paused (load 1.2–1.5, numpy 8.0–12.0 M/s best): 2 threads plain best
+//! rep 258–434 M/s (median of the 12 rounds 353) before, 279–421 (322) after, ratio best/best
+//! 21.8–50× (11 of 12 rounds ≥ 25×) before, 25.1–51.7× (12 of 12) after; `cpu_rates
+//! accumulate`, two interleaved series of five and six runs (21:50–21:51 UTC, load 1.2–1.5),
+//! median (best) of the runs' best reps, before → after: 1 M, 2 threads plain 284 (345) → 316
+//! (356) and 269 (399) → 332 (416); compensated 232 (311) → 296 (346) and 236 (245) → 254
+//! (351); L2-resident plain 189 (235) → 239 (247) and 201 (234) → 233 (246), compensated
+//! 141 (177) → 190 (197) and 155 (177) → 189 (204); the 2-thread streaming read 536–575 in
+//! both. Plain gains between −9 % and +23 % by statistic and series: not the +15 % of the
+//! goal beyond the noise of this shared VM; the lead's idle-VM series decides.
+//!
+//! What bounds the kernel here: one group (`G=1`, every contribution in the same sum) runs at
+//! ~157 M/s, ~15 cycles a contribution, the latency of a group sum's store, reload and add;
+//! two groups at 213, four at 230 M/s (best rep, same run): with four groups that chain costs
+//! a few per cent. With the memory system shared (the 1 M case while the 1-thread streaming
+//! read of the same 64 MiB ran at 110–150 M/s instead of 320 on the idle VM) the 1-thread 1 M
+//! rows ran at the streaming read's rate before and after: about 16 outstanding line fills a
+//! core at DRAM latency, which no change of the arithmetic moves.
+//!
+//! Not kept (same session, interleaved): the three columns also asked for four blocks ahead
+//! into L2 (`prefetcht1`, once a line): slower in the shared phase, 1 thread plain on the 1 M
+//! case 111 → 100 M/s and compensated 104 → 87 (median of six), as the fifteenth session
+//! found at the idle VM; and phasors, group offsets and sums in chunks of 16 (the next chunk's
+//! phasor arithmetic in flight with the previous chunk's sums): L2-resident plain best 254 →
+//! 229 M/s, compensated 204 → 188 (eight rounds), the 1 M rows no faster; and
+//! `Accumulator::intensity` for the AVX-512F kernel four groups at a time (their `(s + c)²`
+//! transposed, each group's six squares added in order in one lane): L2-resident plain 239
+//! (229) against 238 (230) M/s best (median) of ten rounds, no gain.
 
 use super::{
     Accumulator, BLOCK, Contribution, FAST_LIMIT, GroupSum, INCOHERENT, Summation, check_offsets,
@@ -219,14 +273,17 @@ impl From<&[Contribution]> for ContributionColumns {
     }
 }
 
-/// Cosines and sines of one block of phasors, each row on its own cache lines, and the
-/// byte offset of each contribution's group sum (AVX-512F kernel; [`INCOHERENT_OFFSET`] for id 0).
+/// Cosines and sines of one block of phasors, each row on its own cache lines, and, for the
+/// AVX-512F kernel, the byte offset of each contribution's group sum ([`INCOHERENT_OFFSET`] for
+/// id 0) and each sine as the pair (−sin, sin) (`pair[2j]`, `pair[2j + 1]`: the lane pattern of
+/// `GroupTable::add_field`'s `m`, which one 16-byte broadcast load spreads over a register).
 #[derive(Clone, Debug)]
 #[repr(C, align(64))]
 pub(super) struct TrigBlock {
     cos: [f64; BLOCK],
     sin: [f64; BLOCK],
     offset: [u64; BLOCK],
+    pair: [f64; 2 * BLOCK],
 }
 
 impl Default for TrigBlock {
@@ -235,6 +292,7 @@ impl Default for TrigBlock {
             cos: [0.0; BLOCK],
             sin: [0.0; BLOCK],
             offset: [0; BLOCK],
+            pair: [0.0; 2 * BLOCK],
         }
     }
 }
@@ -429,8 +487,9 @@ impl Accumulator {
             if W512 {
                 // SAFETY: the caller has AVX2 and AVX-512F (`columns_avx512`).
                 unsafe {
+                    sine_pairs_512(trig, len);
                     group_offsets_512(table, idb, &mut trig.offset);
-                    add_block_512::<COMP>(table, incoherent, trig, fb);
+                    add_block_512::<COMP>(table, incoherent, trig, fields, start, len);
                 }
                 start += len;
                 continue;
@@ -504,7 +563,7 @@ unsafe fn group_offsets_512(table: &mut super::GroupTable, ids: &[u64], offset: 
             let id = _mm512_loadu_si512(ids.as_ptr().add(j).cast());
             // `first` holds 0 for a group not created yet: lanes with id 0 are excluded from
             // the fast case, so a match is always a group that exists.
-            let f = table.first;
+            let f = new_first_groups_512(table, id);
             let k0 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[0] as i64));
             let k1 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[1] as i64));
             let k2 = _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(f[2] as i64));
@@ -532,17 +591,125 @@ unsafe fn group_offsets_512(table: &mut super::GroupTable, ids: &[u64], offset: 
             j += 8;
         }
     }
-    lane_by_lane(table, j..ids.len(), offset);
+    if j < ids.len() {
+        lane_by_lane(table, j..ids.len(), offset);
+    }
 }
 
-/// Adds a block whose group offsets [`group_offsets_512`] has found (`trig.offset`) and whose
-/// phasors are in `trig.cos`, `trig.sin`: each contribution through [`add_one_512`] into its
-/// group's sum, or its |E|² into the incoherent sum, in order; the fields a block ahead asked
-/// for by prefetch hints.
+/// The ids of the first four groups (`table.first`) after creating, if the point has at most
+/// four groups and this chunk of eight ids (`id`) brings new ones that keep it at four or
+/// fewer, those groups, in order of first appearance in the chunk, without a branch per id: the
+/// first lane of each distinct new id by seven shifted compares, the new ids gathered in order
+/// by one compress and put after the existing ones in `first`, `table.ids` and (zero sums)
+/// `table.sums`. Any other chunk (new ids beyond the fourth group, or a point past four
+/// groups) is left to [`group_offsets_512`]'s lookup per distinct id. Same groups, same order
+/// as `GroupTable::group` one id at a time.
 ///
 /// # Safety
-/// The CPU must have AVX-512F; `trig.offset[..fields.len()]` must be offsets of groups that
-/// exist in `table.sums` (or [`INCOHERENT_OFFSET`]), as [`group_offsets_512`] writes them.
+/// The CPU must have AVX-512F.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn new_first_groups_512(
+    table: &mut super::GroupTable,
+    id: std::arch::x86_64::__m512i,
+) -> [u64; 4] {
+    use std::arch::x86_64::*;
+    let n = table.ids.len();
+    if n >= 4 {
+        return table.first;
+    }
+    // SAFETY: AVX-512F is the caller's promise. `first` is `[u64; 4]` (32-byte unaligned moves);
+    // `reserve(4)` makes room for four more entries of `ids` and `sums`, of which the first
+    // `d ≤ 4 − n` are written and then counted by `set_len` (the other written ones are
+    // beyond the length, unread).
+    unsafe {
+        let zero = _mm512_setzero_si512();
+        let f = _mm512_castsi256_si512(_mm256_loadu_si256(table.first.as_ptr().cast()));
+        // Lanes of an id that is neither 0 nor one of the point's groups yet (`first` holds 0
+        // for a group not created yet, which matches only the id-0 lanes).
+        let fs = table.first;
+        let known = _mm512_cmpeq_epi64_mask(id, zero)
+            | _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(fs[0] as i64))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(fs[1] as i64))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(fs[2] as i64))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_set1_epi64(fs[3] as i64));
+        let new = !known;
+        if new == 0 {
+            return table.first;
+        }
+        // Lanes whose id is also in a lower lane (lane l against lane l − r, r = 1..8).
+        let seen = _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<7>(id, zero))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<6>(id, zero))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<5>(id, zero))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<4>(id, zero))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<3>(id, zero))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<2>(id, zero))
+            | _mm512_cmpeq_epi64_mask(id, _mm512_alignr_epi64::<1>(id, zero));
+        let firsts = new & !seen;
+        let d = firsts.count_ones() as usize;
+        if n + d > 4 {
+            return table.first;
+        }
+        // The new ids in order of first appearance, in lanes 0..d.
+        let u = _mm512_castsi512_si256(_mm512_maskz_compress_epi64(firsts, id));
+        let f = _mm512_mask_expand_epi64(f, ((1u8 << d) - 1) << n, _mm512_castsi256_si512(u));
+        _mm256_storeu_si256(table.first.as_mut_ptr().cast(), _mm512_castsi512_si256(f));
+        table.ids.reserve(4);
+        _mm256_storeu_si256(table.ids.as_mut_ptr().add(n).cast(), u);
+        table.ids.set_len(n + d);
+        table.sums.reserve(4);
+        for k in 0..4 {
+            table
+                .sums
+                .as_mut_ptr()
+                .add(n + k)
+                .write(GroupSum::default());
+        }
+        table.sums.set_len(n + d);
+    }
+    table.first
+}
+
+/// `trig.pair[2j]`, `trig.pair[2j + 1]` = (−`trig.sin[j]`, `trig.sin[j]`) for `j < len` (rounded
+/// up to a multiple of eight; the lanes past `len` hold stale sines nobody reads). The negation
+/// is a sign flip, as `-phasor.im` in `GroupTable::add_field`. Per eight sines one xor and two
+/// two-source permutes, instead of one xor per contribution in the sums.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `len ≤ BLOCK`.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn sine_pairs_512(trig: &mut TrigBlock, len: usize) {
+    use std::arch::x86_64::*;
+    // SAFETY: AVX-512F is the caller's promise; `8k + 8 ≤ BLOCK` (k < ⌈len/8⌉ ≤ BLOCK/8), so
+    // `sin[8k..8k + 8]` and `pair[16k..16k + 16]` are in bounds (unaligned 64-byte moves).
+    unsafe {
+        let sign = _mm512_set1_epi64(i64::MIN);
+        let lo = _mm512_set_epi64(11, 3, 10, 2, 9, 1, 8, 0);
+        let hi = _mm512_set_epi64(15, 7, 14, 6, 13, 5, 12, 4);
+        for k in 0..len.div_ceil(8) {
+            let s = _mm512_loadu_pd(trig.sin.as_ptr().add(8 * k));
+            let n = _mm512_castsi512_pd(_mm512_xor_si512(_mm512_castpd_si512(s), sign));
+            // (−s0, s0, −s1, s1, −s2, s2, −s3, s3) and the same of lanes 4..8.
+            let p = trig.pair.as_mut_ptr().add(16 * k);
+            _mm512_storeu_pd(p, _mm512_permutex2var_pd(n, lo, s));
+            _mm512_storeu_pd(p.add(8), _mm512_permutex2var_pd(n, hi, s));
+        }
+    }
+}
+
+/// Adds the block `fields[start..start + len]` whose group offsets [`group_offsets_512`] has
+/// found (`trig.offset`) and whose phasors are in `trig.cos`, `trig.pair` ([`sine_pairs_512`]):
+/// each contribution through [`add_one_512`] into its group's sum, or its |E|² into the
+/// incoherent sum, in order; the fields a block ahead asked for by prefetch hints. A field that
+/// another one of `fields` follows is read by one unmasked 64-byte load (its six components and
+/// the next field's x in lanes 6, 7, which reach only the sums' padding); the last of `fields`
+/// by a masked load of its 48 bytes.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `start + len ≤ fields.len()`, `len ≤ BLOCK`;
+/// `trig.offset[..len]` must be offsets of groups that exist in `table.sums` (or
+/// [`INCOHERENT_OFFSET`]), as [`group_offsets_512`] writes them.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
 unsafe fn add_block_512<const COMP: bool>(
@@ -550,24 +717,72 @@ unsafe fn add_block_512<const COMP: bool>(
     incoherent: &mut super::CompSum,
     trig: &TrigBlock,
     fields: &[Field3],
+    start: usize,
+    len: usize,
 ) {
+    use std::arch::x86_64::*;
     let base = table.sums.as_mut_ptr().cast::<u8>();
-    for (j, field) in fields.iter().enumerate() {
-        // The field a block ahead (48 bytes apart: every cache line is asked for).
-        prefetch(std::ptr::from_ref(field).wrapping_add(BLOCK));
-        let off = trig.offset[j];
-        if off == INCOHERENT_OFFSET {
-            let e2 = field[0].norm_sqr() + field[1].norm_sqr() + field[2].norm_sqr();
-            incoherent.add(e2, COMP);
-            continue;
-        }
-        // SAFETY: `off` is `g · size_of::<GroupSum>()` for a group `g < table.sums.len()`
-        // (the caller's promise), so `base + off` is that group's sum, aligned, and nothing
-        // else refers to it during the call; AVX-512F: the caller's promise.
+    let f0 = fields.as_ptr().wrapping_add(start);
+    // Contributions `0..full` of the block have another field after theirs in `fields`.
+    let full = len.min(fields.len() - start - 1);
+    // (A loop body in an `#[inline(always)]` function, not a closure: a closure that is not
+    // inlined does not get the AVX-512F of its caller, and its intrinsics become calls.)
+    for j in 0..full {
+        // SAFETY: `start + j + 1 < fields.len()`: the 64 bytes from `fields[start + j]` lie in
+        // it and the next field (unaligned load); the rest: the caller's promises.
         unsafe {
-            let sum = &mut *base.add(off as usize).cast::<GroupSum>();
-            add_one_512::<COMP>(sum, field, trig.cos[j], trig.sin[j]);
+            let a = _mm512_loadu_pd(f0.add(j).cast::<f64>());
+            add_at_512::<COMP>(base, incoherent, trig, f0.add(j), j, a);
         }
+    }
+    for j in full..len {
+        // SAFETY: `fields[start + j]` is 6 contiguous f64 (`Field3`: three `#[repr(C)]`
+        // `Complex64`), masked load of those 6; the rest: the caller's promises.
+        unsafe {
+            let a = _mm512_maskz_loadu_pd(0b0011_1111, f0.add(j).cast::<f64>());
+            add_at_512::<COMP>(base, incoherent, trig, f0.add(j), j, a);
+        }
+    }
+}
+
+/// Contribution `j` of a block in [`add_block_512`]: its field `*field` (also in `a`, lanes
+/// 0..6) added with the phasor `trig.cos[j]`, `trig.pair[2j..2j + 2]` to the group sum at byte
+/// offset `trig.offset[j]` from `base`, or its |E|² to `incoherent`; the field a block ahead
+/// asked for.
+///
+/// # Safety
+/// The CPU must have AVX-512F; `j < BLOCK`; `field` points to a `Field3`; `trig.offset[j]` is
+/// [`INCOHERENT_OFFSET`] or `g · size_of::<GroupSum>()` of a group sum `g` of the table that
+/// `base` points to, which nothing else refers to during the call.
+#[cfg(target_arch = "x86_64")]
+#[inline(always)]
+unsafe fn add_at_512<const COMP: bool>(
+    base: *mut u8,
+    incoherent: &mut super::CompSum,
+    trig: &TrigBlock,
+    field: *const Field3,
+    j: usize,
+    a: std::arch::x86_64::__m512d,
+) {
+    use std::arch::x86_64::*;
+    // The field a block ahead (48 bytes apart: every cache line is asked for).
+    prefetch(field.wrapping_add(BLOCK));
+    let off = trig.offset[j];
+    if off == INCOHERENT_OFFSET {
+        // SAFETY: `field` points to a `Field3` (the caller's promise).
+        let f = unsafe { &*field };
+        let e2 = f[0].norm_sqr() + f[1].norm_sqr() + f[2].norm_sqr();
+        incoherent.add(e2, COMP);
+        return;
+    }
+    // SAFETY: `base + off` is group sum `g`, aligned, not referred to elsewhere (the caller's
+    // promise); `2j + 2 ≤ 2 BLOCK` (a 16-byte load of `pair`); AVX-512F: the caller's promise.
+    unsafe {
+        let sum = &mut *base.add(off as usize).cast::<GroupSum>();
+        // `vbroadcastf32x4` (AVX-512F; the f64x2 form is AVX-512DQ): the same 16 bytes.
+        let pair = _mm_castpd_ps(_mm_loadu_pd(trig.pair.as_ptr().add(2 * j)));
+        let m = _mm512_castps_pd(_mm512_broadcast_f32x4(pair));
+        add_one_512::<COMP>(sum, a, trig.cos[j], m);
     }
 }
 
@@ -636,38 +851,33 @@ unsafe fn add_one_256<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: 
 }
 
 /// [`add_one_256`] with the six field components (x, y, z; re, im) in lanes 0..6 of one
-/// 8-lane register: the same operations lane by lane, so the same bits. The group sum is loaded
-/// and stored as its whole 64-byte line (`s` and its padding; `c` and its padding; lanes 6 and
-/// 7 of the product, ±0 or NaN, go only to the padding, which nothing reads): a plain aligned
-/// store that the next contribution of the group can load without a masked-store forwarding
-/// stall.
+/// 8-lane register `a` and the sine as `m` = (−sin, sin, −sin, sin, …): the same operations
+/// lane by lane, so the same bits. The group sum is loaded and stored as its whole 64-byte line
+/// (`s` and its padding; `c` and its padding; lanes 6 and 7 of the product, whatever `a` holds
+/// there, go only to the padding, which nothing reads): a plain aligned store that the next
+/// contribution of the group can load without a masked-store forwarding stall.
 ///
 /// # Safety
 /// The CPU must have AVX-512F.
 #[cfg(target_arch = "x86_64")]
 #[inline(always)]
-unsafe fn add_one_512<const COMP: bool>(sum: &mut GroupSum, field: &Field3, co: f64, si: f64) {
+unsafe fn add_one_512<const COMP: bool>(
+    sum: &mut GroupSum,
+    a: std::arch::x86_64::__m512d,
+    co: f64,
+    m: std::arch::x86_64::__m512d,
+) {
     use std::arch::x86_64::*;
-    const SIX: __mmask8 = 0b0011_1111;
-    // SAFETY: `Field3` is three `Complex64` (`#[repr(C)]` re, im): 6 contiguous f64 (masked
-    // load of those 6). `GroupSum` is `#[repr(C, align(64))]` { s: [f64; 6], _pad_s: [f64; 2],
+    // SAFETY: `GroupSum` is `#[repr(C, align(64))]` { s: [f64; 6], _pad_s: [f64; 2],
     // c: [f64; 6], _pad_c: [f64; 2] }: 16 f64, `s` + `_pad_s` the first 64-byte aligned line
     // and `c` + `_pad_c` the second, read and written through a pointer to the whole struct.
     // AVX-512F: the caller's promise.
     unsafe {
-        // −0.0 in the re lanes: xor flips the sign of sin there (re, im, re, im, …).
-        let neg_re = _mm512_castpd_si512(_mm512_set_pd(0.0, -0.0, 0.0, -0.0, 0.0, -0.0, 0.0, -0.0));
-        let a = _mm512_maskz_loadu_pd(SIX, field.as_ptr().cast::<f64>());
-        let b = _mm512_permute_pd::<0b0101_0101>(a); // x.im x.re y.im y.re z.im z.re 0 0
+        let b = _mm512_permute_pd::<0b0101_0101>(a); // x.im x.re y.im y.re z.im z.re · ·
         let pc = _mm512_set1_pd(co);
-        let m = _mm512_castsi512_pd(_mm512_xor_si512(
-            _mm512_castpd_si512(_mm512_set1_pd(si)),
-            neg_re,
-        ));
-        // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form.
-        // Lanes 6, 7: ±0 for finite `co`, `si` (NaN for a non-finite phase, whose sum is NaN
-        // anyway); they only reach the padding, which nothing reads. No mask here: a masked
-        // add costs one more shuffle-port operation (`vexpandpd`) per contribution.
+        // (fr·pc + fi·(−ps), fi·pc + fr·ps): `add_field`'s lane form. Lanes 6, 7 only reach
+        // the padding (no mask: a masked add costs one more shuffle-port operation,
+        // `vexpandpd`, per contribution).
         let p = _mm512_add_pd(_mm512_mul_pd(a, pc), _mm512_mul_pd(b, m));
         let sp = std::ptr::from_mut(sum).cast::<f64>();
         let s = _mm512_load_pd(sp);

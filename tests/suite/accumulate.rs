@@ -1046,6 +1046,85 @@ fn column_kernels_walk_every_group_search_branch() {
 }
 
 #[test]
+fn columns_ignore_the_next_field_read_with_a_field() {
+    // The AVX-512F kernel reads each field but the last of the columns with one 64-byte load,
+    // which also holds the next field's x (lanes 6, 7, only ever added to the sums' padding).
+    // Points of 1, 7, 64, 65 and 130 contributions (the last of a block, of a point, of the
+    // columns; > 4 groups, id 0 mixed in), each followed in the columns by a point whose first
+    // field's x is NaN, ±∞ or 1e300: every point but those gives `Accumulator::add`'s bits,
+    // whichever kernel, both summations.
+    let mut r = Rng(31);
+    let mut points: Vec<Vec<Contribution>> = Vec::new();
+    for (k, n) in [1usize, 7, 64, 65, 130].into_iter().enumerate() {
+        points.push(
+            (0..n)
+                .map(|j| {
+                    c(
+                        [0, 3, 5, 8, 13, 21][(j * 5 + k) % 6],
+                        1e6 * r.sym(),
+                        r.field(),
+                    )
+                })
+                .collect(),
+        );
+        let mut bad = r.field();
+        bad[0] = [
+            Complex64::new(f64::NAN, f64::NAN),
+            Complex64::new(f64::INFINITY, f64::NEG_INFINITY),
+            Complex64::new(1e300, -1e300),
+        ][k % 3];
+        points.push(vec![c(3, 0.25, bad), c(5, 0.5, r.field())]);
+    }
+    let all: Vec<Contribution> = points.iter().flatten().copied().collect();
+    let offsets = offsets_from_counts(&points.iter().map(Vec::len).collect::<Vec<_>>());
+    let cols = ContributionColumns::from(&all[..]);
+    for s in [Summation::Compensated, Summation::Plain] {
+        for kernel in column_kernels() {
+            let mut out = vec![0.0; points.len()];
+            accumulate_columns_using(kernel, &cols, &offsets, s, &mut out);
+            for (k, cs) in points.iter().enumerate().step_by(2) {
+                let expected = added_one_by_one(s, cs).0;
+                assert!(expected.is_finite());
+                assert_eq!(
+                    out[k].to_bits(),
+                    expected.to_bits(),
+                    "point {k} ({} contributions) {s:?} {kernel:?}: {:e} vs {expected:e}",
+                    cs.len(),
+                    out[k]
+                );
+            }
+            // Within one point too: the next field of a group's contribution is non-finite.
+            let mut acc = Accumulator::with_summation(s);
+            let (a, b) = (offsets[2], offsets[4]);
+            acc.extend_columns_using(
+                kernel,
+                &cols.coherence_ids[a..b],
+                &cols.phase_cycles[a..b],
+                &cols.fields[a..b],
+            );
+            let mut one = Accumulator::with_summation(s);
+            for x in &all[a..b] {
+                one.add(x);
+            }
+            for ((ia, ea), (ib, eb)) in acc.groups().iter().zip(one.groups()) {
+                assert_eq!(ia, ib);
+                for k in 0..3 {
+                    assert!(
+                        ea[k].re.to_bits() == eb[k].re.to_bits()
+                            && ea[k].im.to_bits() == eb[k].im.to_bits()
+                            || ea[k].re.is_nan() && eb[k].re.is_nan()
+                            || ea[k].im.is_nan() && eb[k].im.is_nan(),
+                        "group {ia} component {k} {s:?} {kernel:?}: {} vs {}",
+                        ea[k],
+                        eb[k]
+                    );
+                }
+            }
+        }
+    }
+}
+
+#[test]
 fn columns_keep_the_compensated_guarantee() {
     // The one-large-and-a-million-tiny-terms case of the rows, through the columns: E = 1 +
     // 10^6·2^-54 exactly (integer phases, e^{i2πn} = 1 exactly), I = (1 + δ)².
