@@ -187,6 +187,12 @@ pub(crate) struct KernelScratch {
     ref_q: Vec<f64>,
     dirs: Vec<DVec3>,
     frames: Vec<Frame>,
+    /// The roots of the current source's sequences as the pixel found them (restored where a
+    /// ray's rest sends the pixel to the exact trace), and per sequence solved (its index, p,
+    /// the last segment's direction along N) with its heights per slab (`rays`).
+    snapshot: Vec<[f64; 4]>,
+    solved: Vec<(usize, f64, f64)>,
+    solved_h: Vec<f64>,
     /// The complex coefficients of each frame ((c_s, c_p) of `vector`, then of the paper's
     /// rules), filled only by [`KernelArithmetic::Complex`].
     frames_complex: Vec<[[Complex64; 2]; 2]>,
@@ -826,6 +832,16 @@ impl StackKernel {
             }
             let u = lat / d;
             let mut reference: Option<f64> = None;
+            // Every root first, then the rest of each ray (module docs, "Speed"): the roots'
+            // chains of square roots and divisions overlap. The roots stored in `guess` are
+            // those the one-pass order stores: where a ray's rest sends the pixel to the exact
+            // trace, the roots of the later sequences are restored.
+            let len = src.seqs.len();
+            s.snapshot.clear();
+            s.snapshot.extend_from_slice(&s.guess[flat..flat + len]);
+            s.solved.clear();
+            s.solved_h.clear();
+            let mut failed = false;
             for (k, seq) in src.seqs.iter().enumerate() {
                 let idx = flat + k;
                 let Some(c) = seq else { continue };
@@ -851,7 +867,8 @@ impl StackKernel {
                 if c.events.is_empty() {
                     let dz = zp - src.z;
                     if dz.abs() <= self.margin {
-                        return false;
+                        failed = true;
+                        break;
                     }
                     sign_last = dz.signum();
                     s.h[src.slab] += dz.abs();
@@ -861,187 +878,210 @@ impl StackKernel {
                 }
                 let g = s.guess[idx];
                 let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, start_of(g)) else {
-                    return false;
+                    failed = true;
+                    break;
                 };
                 s.guess[idx] = [p, g[0], g[1], g[2]];
                 if p < 1e-9 {
-                    return false;
+                    failed = true;
+                    break;
                 }
-                // Away from grazing in every slab crossed, and from every critical angle; the
-                // cosines of the slabs crossed.
-                for ((&hk, &nk), qk) in s.h.iter().zip(&self.slab_n).zip(s.q.iter_mut()) {
-                    if hk != 0.0 {
-                        if (nk - p) * (nk + p) <= 1e-6 * nk * nk {
-                            return false;
+                s.solved.push((k, p, sign_last));
+                s.solved_h.extend_from_slice(&s.h);
+            }
+            // The sequence whose rest sends the pixel to the exact trace, if any.
+            let tail_failed = 'tail: {
+                for j in 0..s.solved.len() {
+                    let (k, p, sign_last) = s.solved[j];
+                    let idx = flat + k;
+                    let Some(c) = &src.seqs[k] else { continue };
+                    let last = c.seg_slab.len() - 1;
+                    s.h.copy_from_slice(&s.solved_h[j * ns..(j + 1) * ns]);
+                    // Away from grazing in every slab crossed, and from every critical angle; the
+                    // cosines of the slabs crossed.
+                    for ((&hk, &nk), qk) in s.h.iter().zip(&self.slab_n).zip(s.q.iter_mut()) {
+                        if hk != 0.0 {
+                            if (nk - p) * (nk + p) <= 1e-6 * nk * nk {
+                                break 'tail Some(idx);
+                            }
+                            *qk = q_of(nk, p);
                         }
-                        *qk = q_of(nk, p);
                     }
-                }
-                // Directions of the segments (every segment's slab is crossed: h ≠ 0).
-                s.dirs.clear();
-                for (i, &slab) in c.seg_slab.iter().enumerate() {
-                    let n = self.slab_n[slab];
-                    let sg = if i == last { sign_last } else { c.seg_sign[i] };
-                    let q = if s.h[slab] != 0.0 {
-                        s.q[slab]
-                    } else {
-                        q_of(n, p)
-                    };
-                    let dir = p * u + (sg * q) * nn;
-                    // x/1 = x: the air's segments skip the division.
-                    s.dirs.push(if n == 1.0 { dir } else { dir / n });
-                }
-                let d_last = s.dirs[last];
-                if !build::records(observer, d_last) {
-                    continue;
-                }
-                if !self.shields.is_empty() {
-                    match self.shielded(src, c, point, &s.dirs) {
-                        Some(true) => continue,
-                        Some(false) => {}
-                        None => return false,
-                    }
-                }
-                // Fresnel coefficients and frames of the events.
-                s.frames.clear();
-                s.frames_complex.clear();
-                for (i, ev) in c.events.iter().enumerate() {
-                    let q2_2 = (ev.n2 - p) * (ev.n2 + p);
-                    if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
-                        return false;
-                    }
-                    // n1 cos θi = q of the arriving segment's slab (n1 is its index).
-                    // (x/1 = x: the divisions by an index of 1 are skipped.)
-                    let q1 = s.q[c.seg_slab[i]];
-                    let cos_i = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
-                    let c2t = if ev.n2 == 1.0 {
-                        q2_2
-                    } else {
-                        q2_2 / (ev.n2 * ev.n2)
-                    };
-                    let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
-                    let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
-                        return false;
-                    };
-                    let pick = |f: fresnel::FresnelCoefficients| {
-                        if ev.reflect {
-                            [f.r_s, f.r_p]
+                    // Directions of the segments (every segment's slab is crossed: h ≠ 0).
+                    s.dirs.clear();
+                    for (i, &slab) in c.seg_slab.iter().enumerate() {
+                        let n = self.slab_n[slab];
+                        let sg = if i == last { sign_last } else { c.seg_sign[i] };
+                        let q = if s.h[slab] != 0.0 {
+                            s.q[slab]
                         } else {
-                            [f.t_s, f.t_p]
-                        }
-                    };
-                    // (c_s, c_p), real: no interface where n1 = n2 (`fresnel`).
-                    let vector = match (ev.n1 == ev.n2, ev.reflect) {
-                        (true, true) => [0.0; 2],
-                        (true, false) => [1.0; 2],
-                        (false, reflect) => fresnel::fresnel_real_pair_with_cos2_t(
-                            ev.n1, ev.n2, cos_i, c2t, reflect,
-                        ),
-                    };
-                    let paper_c = paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
-                    s.frames.push(Frame {
-                        s: sv,
-                        p_i: d_i.cross(sv),
-                        p_o: d_o.cross(sv),
-                        vector,
-                        paper: paper_c.map_or([0.0; 2], |[a, b]| [a.re, b.re]),
-                    });
-                    if arithmetic == KernelArithmetic::Complex {
-                        let f = if ev.n1 == ev.n2 {
-                            fresnel::fresnel(ev.n1, ev.n2, cos_i)
-                        } else {
-                            fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, c2t)
+                            q_of(n, p)
                         };
-                        s.frames_complex
-                            .push([pick(f), paper_c.unwrap_or([Complex64::default(); 2])]);
+                        let dir = p * u + (sg * q) * nn;
+                        // x/1 = x: the air's segments skip the division.
+                        s.dirs.push(if n == 1.0 { dir } else { dir / n });
                     }
-                }
-                // The optical path (for the coherence-length rule) and Δs.
-                let mut path = p * d;
-                for (&hk, &qk) in s.h.iter().zip(&s.q) {
-                    if hk != 0.0 {
-                        path += hk * qk;
+                    let d_last = s.dirs[last];
+                    if !build::records(observer, d_last) {
+                        continue;
                     }
-                }
-                let delta = match reference {
-                    None => {
-                        reference = Some(p);
-                        s.ref_h.copy_from_slice(&s.h);
-                        s.ref_q.copy_from_slice(&s.q);
-                        0.0
-                    }
-                    Some(pr) => {
-                        let mut bracket = d;
-                        let mut extra = 0.0;
-                        for (k, ((&hj, &hr), &nk)) in
-                            s.h.iter().zip(&s.ref_h).zip(&self.slab_n).enumerate()
-                        {
-                            // q_k(p) of a slab this ray does not cross (hj = 0) is not cached.
-                            let qj = if hj != 0.0 { s.q[k] } else { q_of(nk, p) };
-                            if hr != 0.0 {
-                                bracket -= hr * (pr + p) / (s.ref_q[k] + qj);
-                            }
-                            let dh = hj - hr;
-                            if dh != 0.0 {
-                                extra += dh * qj;
-                            }
+                    if !self.shields.is_empty() {
+                        match self.shielded(src, c, point, &s.dirs) {
+                            Some(true) => continue,
+                            Some(false) => {}
+                            None => break 'tail Some(idx),
                         }
-                        (p - pr) * bracket + extra
                     }
-                };
-                let lost_length = path > src.coherence_length_m;
-                if (path - src.coherence_length_m).abs() <= 1e-9 * path {
-                    return false;
-                }
-                let d0 = s.dirs[0];
-                let mut shared: Option<(DVec3, DVec3)> = None;
-                for ((ch, linear), &sqrt_intensity) in src
-                    .channels
-                    .iter()
-                    .zip(&src.linear)
-                    .zip(&src.sqrt_intensity)
-                {
-                    let (e, amp) = match *linear {
-                        Some((reference, cos, sin)) => {
-                            let e_ref = match shared {
-                                Some((r, e)) if r == reference => e,
-                                _ => {
-                                    let e = field_reference(reference, d0);
-                                    shared = Some((reference, e));
-                                    e
-                                }
-                            };
-                            (cos * e_ref + sin * d0.cross(e_ref), 1.0)
+                    // Fresnel coefficients and frames of the events.
+                    s.frames.clear();
+                    s.frames_complex.clear();
+                    for (i, ev) in c.events.iter().enumerate() {
+                        let q2_2 = (ev.n2 - p) * (ev.n2 + p);
+                        if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
+                            break 'tail Some(idx);
                         }
-                        None => ch.launch(d0),
-                    };
-                    let a = amp * sqrt_intensity;
-                    let launch = DVec3::new(e.x * a, e.y * a, e.z * a);
-                    let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
-                    out.push(KernelRay {
-                        path: idx,
-                        coherence_id: if coherent {
-                            ch.coherence_id
+                        // n1 cos θi = q of the arriving segment's slab (n1 is its index).
+                        // (x/1 = x: the divisions by an index of 1 are skipped.)
+                        let q1 = s.q[c.seg_slab[i]];
+                        let cos_i = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
+                        let c2t = if ev.n2 == 1.0 {
+                            q2_2
                         } else {
-                            INCOHERENT
-                        },
-                        delta_s_m: delta,
-                        denser_reflections: c.denser_reflections,
-                        vector: match arithmetic {
-                            KernelArithmetic::Real => carry::<false>(launch, &s.frames),
-                            KernelArithmetic::Complex => {
-                                carry_complex(launch, &s.frames, &s.frames_complex, false)
+                            q2_2 / (ev.n2 * ev.n2)
+                        };
+                        let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
+                        let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
+                            break 'tail Some(idx);
+                        };
+                        let pick = |f: fresnel::FresnelCoefficients| {
+                            if ev.reflect {
+                                [f.r_s, f.r_p]
+                            } else {
+                                [f.t_s, f.t_p]
                             }
-                        },
-                        paper: match (paper, arithmetic) {
-                            (false, _) => DVec3::ZERO,
-                            (true, KernelArithmetic::Real) => carry::<true>(launch, &s.frames),
-                            (true, KernelArithmetic::Complex) => {
-                                carry_complex(launch, &s.frames, &s.frames_complex, true)
+                        };
+                        // (c_s, c_p), real: no interface where n1 = n2 (`fresnel`).
+                        let vector = match (ev.n1 == ev.n2, ev.reflect) {
+                            (true, true) => [0.0; 2],
+                            (true, false) => [1.0; 2],
+                            (false, reflect) => fresnel::fresnel_real_pair_with_cos2_t(
+                                ev.n1, ev.n2, cos_i, c2t, reflect,
+                            ),
+                        };
+                        let paper_c =
+                            paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
+                        s.frames.push(Frame {
+                            s: sv,
+                            p_i: d_i.cross(sv),
+                            p_o: d_o.cross(sv),
+                            vector,
+                            paper: paper_c.map_or([0.0; 2], |[a, b]| [a.re, b.re]),
+                        });
+                        if arithmetic == KernelArithmetic::Complex {
+                            let f = if ev.n1 == ev.n2 {
+                                fresnel::fresnel(ev.n1, ev.n2, cos_i)
+                            } else {
+                                fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, c2t)
+                            };
+                            s.frames_complex
+                                .push([pick(f), paper_c.unwrap_or([Complex64::default(); 2])]);
+                        }
+                    }
+                    // The optical path (for the coherence-length rule) and Δs.
+                    let mut path = p * d;
+                    for (&hk, &qk) in s.h.iter().zip(&s.q) {
+                        if hk != 0.0 {
+                            path += hk * qk;
+                        }
+                    }
+                    let delta = match reference {
+                        None => {
+                            reference = Some(p);
+                            s.ref_h.copy_from_slice(&s.h);
+                            s.ref_q.copy_from_slice(&s.q);
+                            0.0
+                        }
+                        Some(pr) => {
+                            let mut bracket = d;
+                            let mut extra = 0.0;
+                            for (k, ((&hj, &hr), &nk)) in
+                                s.h.iter().zip(&s.ref_h).zip(&self.slab_n).enumerate()
+                            {
+                                // q_k(p) of a slab this ray does not cross (hj = 0) is not cached.
+                                let qj = if hj != 0.0 { s.q[k] } else { q_of(nk, p) };
+                                if hr != 0.0 {
+                                    bracket -= hr * (pr + p) / (s.ref_q[k] + qj);
+                                }
+                                let dh = hj - hr;
+                                if dh != 0.0 {
+                                    extra += dh * qj;
+                                }
                             }
-                        },
-                    });
+                            (p - pr) * bracket + extra
+                        }
+                    };
+                    let lost_length = path > src.coherence_length_m;
+                    if (path - src.coherence_length_m).abs() <= 1e-9 * path {
+                        break 'tail Some(idx);
+                    }
+                    let d0 = s.dirs[0];
+                    let mut shared: Option<(DVec3, DVec3)> = None;
+                    for ((ch, linear), &sqrt_intensity) in src
+                        .channels
+                        .iter()
+                        .zip(&src.linear)
+                        .zip(&src.sqrt_intensity)
+                    {
+                        let (e, amp) = match *linear {
+                            Some((reference, cos, sin)) => {
+                                let e_ref = match shared {
+                                    Some((r, e)) if r == reference => e,
+                                    _ => {
+                                        let e = field_reference(reference, d0);
+                                        shared = Some((reference, e));
+                                        e
+                                    }
+                                };
+                                (cos * e_ref + sin * d0.cross(e_ref), 1.0)
+                            }
+                            None => ch.launch(d0),
+                        };
+                        let a = amp * sqrt_intensity;
+                        let launch = DVec3::new(e.x * a, e.y * a, e.z * a);
+                        let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
+                        out.push(KernelRay {
+                            path: idx,
+                            coherence_id: if coherent {
+                                ch.coherence_id
+                            } else {
+                                INCOHERENT
+                            },
+                            delta_s_m: delta,
+                            denser_reflections: c.denser_reflections,
+                            vector: match arithmetic {
+                                KernelArithmetic::Real => carry::<false>(launch, &s.frames),
+                                KernelArithmetic::Complex => {
+                                    carry_complex(launch, &s.frames, &s.frames_complex, false)
+                                }
+                            },
+                            paper: match (paper, arithmetic) {
+                                (false, _) => DVec3::ZERO,
+                                (true, KernelArithmetic::Real) => carry::<true>(launch, &s.frames),
+                                (true, KernelArithmetic::Complex) => {
+                                    carry_complex(launch, &s.frames, &s.frames_complex, true)
+                                }
+                            },
+                        });
+                    }
                 }
+                None
+            };
+            if let Some(idx) = tail_failed {
+                s.guess[idx + 1..flat + len].copy_from_slice(&s.snapshot[idx + 1 - flat..]);
+                return false;
+            }
+            if failed {
+                return false;
             }
             flat += src.seqs.len();
         }
