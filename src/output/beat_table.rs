@@ -103,7 +103,10 @@ impl BeatTable {
         })
     }
 
-    /// G and h·G' at Δ = k h.
+    /// G and h·G' at Δ = k h (out of line: a cache miss is rare, and `cached` stays small
+    /// enough to inline).
+    #[cold]
+    #[inline(never)]
     fn node(&self, k: i64) -> Node {
         let delta = k as f64 * self.h;
         let mut n = [[Complex64::new(0.0, 0.0); 2]; 3];
@@ -119,6 +122,7 @@ impl BeatTable {
         n
     }
 
+    #[inline]
     fn cached<'a>(&self, cache: &'a mut TableCache, k: i64) -> &'a Node {
         if cache.owner != self.id || cache.slots.len() != SLOTS {
             cache.owner = self.id;

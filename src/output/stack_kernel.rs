@@ -191,6 +191,8 @@ pub(crate) struct KernelScratch {
     /// ray's rest sends the pixel to the exact trace), and per sequence solved (its index, p,
     /// the last segment's direction along N) with its heights per slab (`rays`).
     snapshot: Vec<[f64; 4]>,
+    /// cos θ = q_k/n_k (at most 1) of the slabs the current ray's events leave (NaN: not yet).
+    cos: Vec<f64>,
     solved: Vec<(usize, f64, f64)>,
     solved_h: Vec<f64>,
     /// The complex coefficients of each frame ((c_s, c_p) of `vector`, then of the paper's
@@ -512,6 +514,27 @@ fn start_of(g: [f64; 4]) -> f64 {
     }
 }
 
+/// [`fresnel::fresnel_real_pair_with_cos2_t`] from cos θt itself (its square root of c2t
+/// taken by the caller, once for the events that share it): the same operations, bit for bit.
+#[inline]
+fn fresnel_pair_with_cos_t(n1: f64, n2: f64, cos_i: f64, cos_t: f64, reflect: bool) -> [f64; 2] {
+    let n1ci = n1 * cos_i;
+    let n2ci = n2 * cos_i;
+    let n2ct = cos_t * n2;
+    let n1ct = cos_t * n1;
+    let den_s = n1ci + n2ct;
+    let den_p = n2ci + n1ct;
+    let (a_s, a_p) = if reflect {
+        (n1ci - n2ct, n2ci - n1ct)
+    } else {
+        (2.0 * n1ci, 2.0 * n1ci)
+    };
+    [
+        (a_s * den_s) / (den_s * den_s),
+        (a_p * den_p) / (den_p * den_p),
+    ]
+}
+
 /// Complex `e · v`, as [`crate::optics::interaction`] forms it.
 fn dot_complex(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
@@ -822,6 +845,7 @@ impl StackKernel {
         s.ref_h.resize(ns, 0.0);
         s.q.resize(ns, 0.0);
         s.ref_q.resize(ns, 0.0);
+        s.cos.resize(ns, f64::NAN);
         let mut flat = 0;
         for src in &self.sources {
             let v = point - src.position;
@@ -935,6 +959,8 @@ impl StackKernel {
                     // Fresnel coefficients and frames of the events.
                     s.frames.clear();
                     s.frames_complex.clear();
+                    s.cos.fill(f64::NAN);
+                    let mut q_unit = f64::NAN;
                     for (i, ev) in c.events.iter().enumerate() {
                         let q2_2 = (ev.n2 - p) * (ev.n2 + p);
                         if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
@@ -942,12 +968,27 @@ impl StackKernel {
                         }
                         // n1 cos θi = q of the arriving segment's slab (n1 is its index).
                         // (x/1 = x: the divisions by an index of 1 are skipped.)
-                        let q1 = s.q[c.seg_slab[i]];
-                        let cos_i = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
+                        // Formed once per slab (`cos`): two events leaving one slab share it.
+                        let k1 = c.seg_slab[i];
+                        if s.cos[k1].is_nan() {
+                            let q1 = s.q[k1];
+                            s.cos[k1] = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
+                        }
+                        let cos_i = s.cos[k1];
                         let c2t = if ev.n2 == 1.0 {
                             q2_2
                         } else {
                             q2_2 / (ev.n2 * ev.n2)
+                        };
+                        // cos θt = √c2t; into an index of 1 that is √((1 − p)(1 + p)), formed
+                        // once per ray (`q_unit`): the events into air share it.
+                        let cos_t = if ev.n2 == 1.0 {
+                            if q_unit.is_nan() {
+                                q_unit = c2t.sqrt();
+                            }
+                            q_unit
+                        } else {
+                            c2t.sqrt()
                         };
                         let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
                         let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
@@ -964,9 +1005,9 @@ impl StackKernel {
                         let vector = match (ev.n1 == ev.n2, ev.reflect) {
                             (true, true) => [0.0; 2],
                             (true, false) => [1.0; 2],
-                            (false, reflect) => fresnel::fresnel_real_pair_with_cos2_t(
-                                ev.n1, ev.n2, cos_i, c2t, reflect,
-                            ),
+                            (false, reflect) => {
+                                fresnel_pair_with_cos_t(ev.n1, ev.n2, cos_i, cos_t, reflect)
+                            }
                         };
                         let paper_c =
                             paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
@@ -1118,7 +1159,14 @@ impl StackKernel {
                 if den == 0.0 {
                     continue;
                 }
-                let t = (sh.plane.point - a).dot(sh.plane.normal) / den;
+                let num = (sh.plane.point - a).dot(sh.plane.normal);
+                // |num| > 2|den| (2|den| and the comparison exact): the quotient is beyond ±2 and
+                // so is its rounding (rounding is monotonic and ±2 are floats), outside the range
+                // below, without the division (the segments of a thin layer far from a shield).
+                if num.abs() > 2.0 * den.abs() {
+                    continue;
+                }
+                let t = num / den;
                 if !(-0.5..=1.5).contains(&t) {
                     continue;
                 }
