@@ -100,7 +100,9 @@
 //! --samples 81 --fidelity vector`, user + sys CPU, interleaved with the previous binary):
 //! 2 threads, 15 runs, load 1.6–1.9: min 0.462 → 0.442 s, median 0.511 → 0.473 s; one thread,
 //! 25 runs, load 1.1–1.6: min 0.453 → 0.423 s, median 0.528 → 0.483 s: 5–9%, not the 20% hoped
-//! for. The profile stays flat (one thread, `perf record -F 20000`): `rays` 63%, `shielded`
+//! for; criterion (`cargo bench -p fringe-benches --bench render --
+//! 'picture/amplitude_division_300x300_81_vector$'`, the render without sRGB and PNG), main and
+//! this alternated twice, load 1.5–1.9: 32.4 → 30.1 ms, 36.3 → 30.3 ms. The profile stays flat (one thread, `perf record -F 20000`): `rays` 63%, `shielded`
 //! 13%, `shade_terms` 8%, the table's sums 4%; within `rays` no source line above 3% (the
 //! directions' division by the index, Newton's F and F', the carry of the fields). The shared
 //! cosines and the ±2 test are not resolved by these series (min 0.443 → 0.442 s).
