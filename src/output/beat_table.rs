@@ -103,7 +103,10 @@ impl BeatTable {
         })
     }
 
-    /// G and h·G' at Δ = k h.
+    /// G and h·G' at Δ = k h (out of line: a cache miss is rare, and `cached` stays small
+    /// enough to inline).
+    #[cold]
+    #[inline(never)]
     fn node(&self, k: i64) -> Node {
         let delta = k as f64 * self.h;
         let mut n = [[Complex64::new(0.0, 0.0); 2]; 3];
@@ -119,6 +122,7 @@ impl BeatTable {
         n
     }
 
+    #[inline]
     fn cached<'a>(&self, cache: &'a mut TableCache, k: i64) -> &'a Node {
         if cache.owner != self.id || cache.slots.len() != SLOTS {
             cache.owner = self.id;
@@ -132,22 +136,51 @@ impl BeatTable {
         &slot.as_ref().expect("just filled").1
     }
 
-    /// G_c(Δ) for the three channels (cubic Hermite between the nodes around Δ).
-    fn g(&self, delta: f64, cache: &mut TableCache) -> [Complex64; 3] {
+    /// The node index k and the cubic Hermite basis (h00, h10, h01, h11) at Δ = (k + t) h.
+    #[inline]
+    fn hermite(&self, delta: f64) -> (i64, [f64; 4]) {
         let x = delta / self.h;
         let k = x.floor();
         let t = x - k;
-        let k = k as i64;
+        let (t2, t3) = (t * t, t * t * t);
+        (
+            k as i64,
+            [
+                2.0 * t3 - 3.0 * t2 + 1.0,
+                t3 - 2.0 * t2 + t,
+                -2.0 * t3 + 3.0 * t2,
+                t3 - t2,
+            ],
+        )
+    }
+
+    /// G_c(Δ) for the three channels (cubic Hermite between the nodes around Δ).
+    fn g(&self, delta: f64, cache: &mut TableCache) -> [Complex64; 3] {
+        let (k, [h00, h10, h01, h11]) = self.hermite(delta);
         let a = *self.cached(cache, k);
         let b = *self.cached(cache, k + 1);
-        let (t2, t3) = (t * t, t * t * t);
-        let h00 = 2.0 * t3 - 3.0 * t2 + 1.0;
-        let h10 = t3 - 2.0 * t2 + t;
-        let h01 = -2.0 * t3 + 3.0 * t2;
-        let h11 = t3 - t2;
         let mut g = [Complex64::new(0.0, 0.0); 3];
         for c in 0..3 {
             g[c] = a[c][0] * h00 + a[c][1] * h10 + b[c][0] * h01 + b[c][1] * h11;
+        }
+        g
+    }
+
+    /// Re G_c(Δ): the real parts of [`BeatTable::g`] alone, by the same operations (a complex
+    /// times a real scales each part apart, and the sum's real part is the sum of the real
+    /// parts in the same order): bit for bit `g`'s real parts, for a beat term without a
+    /// λ-independent phase, whose sum needs no imaginary part.
+    #[inline]
+    fn g_re(&self, delta: f64, cache: &mut TableCache) -> [f64; 3] {
+        let (k, [h00, h10, h01, h11]) = self.hermite(delta);
+        let mut a = [[0.0; 2]; 3];
+        for (ac, n) in a.iter_mut().zip(self.cached(cache, k)) {
+            *ac = [n[0].re, n[1].re];
+        }
+        let b = self.cached(cache, k + 1);
+        let mut g = [0.0; 3];
+        for c in 0..3 {
+            g[c] = a[c][0] * h00 + a[c][1] * h10 + b[c][0].re * h01 + b[c][1].re * h11;
         }
         g
     }
@@ -178,12 +211,13 @@ impl BeatTable {
                 if (delta / self.h).abs().partial_cmp(&4.5e15) != Some(std::cmp::Ordering::Less) {
                     return None;
                 }
-                let g = self.g(delta, cache);
                 if extra == 0.0 {
+                    let g = self.g_re(delta, cache);
                     for c in 0..3 {
-                        out[c] += b * g[c].re;
+                        out[c] += b * g[c];
                     }
                 } else {
+                    let g = self.g(delta, cache);
                     // (b + 0i) e^{2πie} = b cos + i b sin.
                     let ph = phasor_from_cycles(extra);
                     let (re, im) = (b * ph.re, b * ph.im);

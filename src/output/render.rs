@@ -69,7 +69,10 @@
 //! shading and Fig. 3 by the kernels: the renders ~47% of its CPU before issue #14 (the
 //! kernel's rays ~18%, the beat table ~14%), Newton's sequence ~28%, the sRGB step ~8%
 //! (`perf record --call-graph dwarf`, loaded 2-core VM); issue #14 took it from 0.26 to 0.24 s
-//! (one thread, min of 5, its PNGs byte-identical).
+//! (one thread, min of 5, its PNGs byte-identical). Session 17 (`output::stack_kernel`,
+//! "Speed"): the kernel's roots first, cheaper shield tests, shared cosines, one-pass beat
+//! terms, and here the rows written in place into one buffer (a one-shading white-light
+//! picture is that buffer, no copy): 5–9% of the 900×900 render's CPU, PNG byte-identical.
 
 use crate::accumulate::Accumulator;
 use crate::accumulate::fidelity::Fidelity;
@@ -660,10 +663,14 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
     };
     let bar = progress_bar(g.rows as u64, req.progress);
     let ns = req.shadings.len();
-    let rows: Vec<(Vec<[f64; 3]>, usize, usize)> = (0..g.rows)
-        .into_par_iter()
-        .map_init(Scratch::default, |s, row| {
-            let mut out = vec![[0.0; 3]; g.columns * ns];
+    // The rows are written in place into one buffer (pixel-major, one [f64; 3] per shading):
+    // a picture of one shading in white light is that buffer, without a copy.
+    let width = g.columns * ns;
+    let mut buf = vec![[0.0; 3]; g.rows * width];
+    let counts: Vec<(usize, usize)> = buf
+        .par_chunks_mut(width.max(1))
+        .enumerate()
+        .map_init(Scratch::default, |s, (row, out)| {
             let (mut paths, mut by_kernel) = (0, 0);
             s.kernel.new_row();
             for col in 0..g.columns {
@@ -678,31 +685,38 @@ pub fn render_with(case: &Case, req: &Request, path: PixelPath) -> Result<Render
                 by_kernel += usize::from(k);
             }
             bar.inc(1);
-            (out, paths, by_kernel)
+            (paths, by_kernel)
         })
         .collect();
     bar.finish_and_clear();
-    let paths = rows.iter().map(|r| r.1).sum();
-    let kernel_pixels = rows.iter().map(|r| r.2).sum();
-    let images = req
-        .shadings
-        .iter()
-        .enumerate()
-        .map(|(k, sh)| {
-            let pixels = rows
-                .iter()
-                .flat_map(|(r, _, _)| (0..g.columns).map(move |col| r[col * ns + k]));
-            Image {
-                shading: *sh,
-                width: g.columns,
-                height: g.rows,
-                values: match req.spectrum {
-                    Spectrum::CaseLight => ImageValues::Intensity(pixels.map(|p| p[1]).collect()),
-                    Spectrum::White(_) => ImageValues::Xyz(pixels.collect()),
-                },
-            }
-        })
-        .collect();
+    let paths = counts.iter().map(|r| r.0).sum();
+    let kernel_pixels = counts.iter().map(|r| r.1).sum();
+    let image = |shading: Shading, values: ImageValues| Image {
+        shading,
+        width: g.columns,
+        height: g.rows,
+        values,
+    };
+    let images = match (&req.spectrum, &req.shadings[..]) {
+        (Spectrum::White(_), &[sh]) => vec![image(sh, ImageValues::Xyz(buf))],
+        _ => req
+            .shadings
+            .iter()
+            .enumerate()
+            .map(|(k, sh)| {
+                let pixels = buf.iter().skip(k).step_by(ns).copied();
+                image(
+                    *sh,
+                    match req.spectrum {
+                        Spectrum::CaseLight => {
+                            ImageValues::Intensity(pixels.map(|p| p[1]).collect())
+                        }
+                        Spectrum::White(_) => ImageValues::Xyz(pixels.collect()),
+                    },
+                )
+            })
+            .collect(),
+    };
     Ok(Render {
         images,
         display_lambda_m,

@@ -83,6 +83,29 @@
 //! total reflection and its tunnelling take over), a segment crossing a shield's plane within
 //! `margin` of the shield's edge or of a segment end, an optical path within 1e-9 of the
 //! source's coherence length, or Newton not converging in 100 steps.
+//!
+//! # Speed
+//!
+//! Per pixel and source, `rays` solves every sequence's root first and then forms each ray's
+//! rest (cosines, directions, shields, Fresnel, fields), so the roots' chains of square roots
+//! and divisions overlap; where a ray's rest sends the pixel to the exact trace, the roots of
+//! the later sequences are put back (`KernelScratch::snapshot`), so `guess` holds what a
+//! one-pass order would hold and the picture keeps its bits. Other cuts, each bit for bit:
+//! `shielded` keeps the square root and division of its near-end test out of line (inlined,
+//! the compiler hoisted them before the bound that skips them: 28% of `shielded`'s samples,
+//! `perf annotate`) and skips a crossing beyond ±2 of a segment without its division; the
+//! events leaving one slab share cos θi, the events into an index of 1 share cos θt
+//! (`fresnel_pair_with_cos_t`); `shade_terms` pairs in one pass. Measured (session 17,
+//! 2-core VM shared with other builds, `fringe render plate_amplitude_division --size 900x900
+//! --samples 81 --fidelity vector`, user + sys CPU, interleaved with the previous binary):
+//! 2 threads, 15 runs, load 1.6–1.9: min 0.462 → 0.442 s, median 0.511 → 0.473 s; one thread,
+//! 25 runs, load 1.1–1.6: min 0.453 → 0.423 s, median 0.528 → 0.483 s: 5–9%, not the 20% hoped
+//! for; criterion (`cargo bench -p fringe-benches --bench render --
+//! 'picture/amplitude_division_300x300_81_vector$'`, the render without sRGB and PNG), main and
+//! this alternated twice, load 1.5–1.9: 32.4 → 30.1 ms, 36.3 → 30.3 ms. The profile stays flat (one thread, `perf record -F 20000`): `rays` 63%, `shielded`
+//! 13%, `shade_terms` 8%, the table's sums 4%; within `rays` no source line above 3% (the
+//! directions' division by the index, Newton's F and F', the carry of the fields). The shared
+//! cosines and the ±2 test are not resolved by these series (min 0.443 → 0.442 s).
 
 use crate::accumulate::fidelity::Fidelity;
 use crate::harness::case::build;
@@ -187,6 +210,14 @@ pub(crate) struct KernelScratch {
     ref_q: Vec<f64>,
     dirs: Vec<DVec3>,
     frames: Vec<Frame>,
+    /// The roots of the current source's sequences as the pixel found them (restored where a
+    /// ray's rest sends the pixel to the exact trace), and per sequence solved (its index, p,
+    /// the last segment's direction along N) with its heights per slab (`rays`).
+    snapshot: Vec<[f64; 4]>,
+    /// cos θ = q_k/n_k (at most 1) of the slabs the current ray's events leave (NaN: not yet).
+    cos: Vec<f64>,
+    solved: Vec<(usize, f64, f64)>,
+    solved_h: Vec<f64>,
     /// The complex coefficients of each frame ((c_s, c_p) of `vector`, then of the paper's
     /// rules), filled only by [`KernelArithmetic::Complex`].
     frames_complex: Vec<[[Complex64; 2]; 2]>,
@@ -308,33 +339,37 @@ pub(crate) fn shade_terms(
 ) -> Option<f64> {
     contributions.clear();
     terms.clear();
-    for_each_contribution(rays, shading, |c| contributions.push(c));
+    // One pass: each contribution, as it comes, is paired with the earlier ones of its id (the
+    // pairs (k, l < k) in the order of k, then l). A pixel with more pairs than rays (hence than
+    // contributions) stops pairing at once.
     let mut constant = 0.0;
-    for c in contributions.iter() {
-        constant += power(c.3);
-    }
     let mut pairs = 0;
-    for (k, a) in contributions.iter().enumerate() {
+    let mut over = false;
+    for_each_contribution(rays, shading, |a| {
+        if over {
+            return;
+        }
+        constant += power(a.3);
         if a.0 != INCOHERENT {
-            pairs += contributions[..k].iter().filter(|b| b.0 == a.0).count();
-        }
-    }
-    if pairs > contributions.len() {
-        return None;
-    }
-    for (k, a) in contributions.iter().enumerate() {
-        if a.0 == INCOHERENT {
-            continue;
-        }
-        for b in contributions[..k].iter().filter(|b| b.0 == a.0) {
-            let (delta, extra) = (a.1 - b.1, a.2 - b.2);
-            // 2 Σ_c a_c conj(b_c) of real fields, summed in `dot_conj`'s order.
-            let amplitude = 2.0 * (a.3.x * b.3.x + a.3.y * b.3.y + a.3.z * b.3.z);
-            match terms.iter_mut().find(|t| t.0 == delta && t.1 == extra) {
-                Some(t) => t.2 += amplitude,
-                None => terms.push((delta, extra, amplitude)),
+            for b in contributions.iter().filter(|b| b.0 == a.0) {
+                pairs += 1;
+                if pairs > rays.len() {
+                    over = true;
+                    return;
+                }
+                let (delta, extra) = (a.1 - b.1, a.2 - b.2);
+                // 2 Σ_c a_c conj(b_c) of real fields, summed in `dot_conj`'s order.
+                let amplitude = 2.0 * (a.3.x * b.3.x + a.3.y * b.3.y + a.3.z * b.3.z);
+                match terms.iter_mut().find(|t| t.0 == delta && t.1 == extra) {
+                    Some(t) => t.2 += amplitude,
+                    None => terms.push((delta, extra, amplitude)),
+                }
             }
         }
+        contributions.push(a);
+    });
+    if over || pairs > contributions.len() {
+        return None;
     }
     Some(constant)
 }
@@ -502,6 +537,27 @@ fn start_of(g: [f64; 4]) -> f64 {
     }
 }
 
+/// [`fresnel::fresnel_real_pair_with_cos2_t`] from cos θt itself (its square root of c2t
+/// taken by the caller, once for the events that share it): the same operations, bit for bit.
+#[inline]
+fn fresnel_pair_with_cos_t(n1: f64, n2: f64, cos_i: f64, cos_t: f64, reflect: bool) -> [f64; 2] {
+    let n1ci = n1 * cos_i;
+    let n2ci = n2 * cos_i;
+    let n2ct = cos_t * n2;
+    let n1ct = cos_t * n1;
+    let den_s = n1ci + n2ct;
+    let den_p = n2ci + n1ct;
+    let (a_s, a_p) = if reflect {
+        (n1ci - n2ct, n2ci - n1ct)
+    } else {
+        (2.0 * n1ci, 2.0 * n1ci)
+    };
+    [
+        (a_s * den_s) / (den_s * den_s),
+        (a_p * den_p) / (den_p * den_p),
+    ]
+}
+
 /// Complex `e · v`, as [`crate::optics::interaction`] forms it.
 fn dot_complex(e: &Field3, v: DVec3) -> Complex64 {
     e[0] * v.x + e[1] * v.y + e[2] * v.z
@@ -553,6 +609,24 @@ fn carry_complex(
     }
     debug_assert!(f.iter().all(|c| c.im == 0.0), "a real field gained a phase");
     DVec3::new(f[0].re, f[1].re, f[2].re)
+}
+
+/// The verdict on a shield's crossing at `t` along the segment `ab` where `t` lies within
+/// 2·margin/l of an end (`shielded`): `Some(false)` beyond tm = margin/|ab| of both ends (the
+/// segment misses the shield's plane), `None` within tm of an end, `Some(true)` between them.
+/// Out of line and cold: inlined, the compiler formed tm's square root and division for every
+/// segment before the bound that skips them (`perf annotate`: 28% of `shielded`).
+#[cold]
+#[inline(never)]
+fn near_end(margin: f64, ab: DVec3, t: f64) -> Option<bool> {
+    let tm = margin / ab.length();
+    if t < -tm || t > 1.0 + tm {
+        return Some(false);
+    }
+    if t.abs() <= tm || (t - 1.0).abs() <= tm {
+        return None;
+    }
+    Some(true)
 }
 
 impl StackKernel {
@@ -794,6 +868,7 @@ impl StackKernel {
         s.ref_h.resize(ns, 0.0);
         s.q.resize(ns, 0.0);
         s.ref_q.resize(ns, 0.0);
+        s.cos.resize(ns, f64::NAN);
         let mut flat = 0;
         for src in &self.sources {
             let v = point - src.position;
@@ -804,6 +879,16 @@ impl StackKernel {
             }
             let u = lat / d;
             let mut reference: Option<f64> = None;
+            // Every root first, then the rest of each ray (module docs, "Speed"): the roots'
+            // chains of square roots and divisions overlap. The roots stored in `guess` are
+            // those the one-pass order stores: where a ray's rest sends the pixel to the exact
+            // trace, the roots of the later sequences are restored.
+            let len = src.seqs.len();
+            s.snapshot.clear();
+            s.snapshot.extend_from_slice(&s.guess[flat..flat + len]);
+            s.solved.clear();
+            s.solved_h.clear();
+            let mut failed = false;
             for (k, seq) in src.seqs.iter().enumerate() {
                 let idx = flat + k;
                 let Some(c) = seq else { continue };
@@ -829,7 +914,8 @@ impl StackKernel {
                 if c.events.is_empty() {
                     let dz = zp - src.z;
                     if dz.abs() <= self.margin {
-                        return false;
+                        failed = true;
+                        break;
                     }
                     sign_last = dz.signum();
                     s.h[src.slab] += dz.abs();
@@ -839,187 +925,227 @@ impl StackKernel {
                 }
                 let g = s.guess[idx];
                 let Some(p) = solve_p(&s.h, &self.slab_n, d, c.p_max, start_of(g)) else {
-                    return false;
+                    failed = true;
+                    break;
                 };
                 s.guess[idx] = [p, g[0], g[1], g[2]];
                 if p < 1e-9 {
-                    return false;
+                    failed = true;
+                    break;
                 }
-                // Away from grazing in every slab crossed, and from every critical angle; the
-                // cosines of the slabs crossed.
-                for ((&hk, &nk), qk) in s.h.iter().zip(&self.slab_n).zip(s.q.iter_mut()) {
-                    if hk != 0.0 {
-                        if (nk - p) * (nk + p) <= 1e-6 * nk * nk {
-                            return false;
+                s.solved.push((k, p, sign_last));
+                s.solved_h.extend_from_slice(&s.h);
+            }
+            // The sequence whose rest sends the pixel to the exact trace, if any.
+            let tail_failed = 'tail: {
+                for j in 0..s.solved.len() {
+                    let (k, p, sign_last) = s.solved[j];
+                    let idx = flat + k;
+                    let Some(c) = &src.seqs[k] else { continue };
+                    let last = c.seg_slab.len() - 1;
+                    s.h.copy_from_slice(&s.solved_h[j * ns..(j + 1) * ns]);
+                    // Away from grazing in every slab crossed, and from every critical angle; the
+                    // cosines of the slabs crossed.
+                    for ((&hk, &nk), qk) in s.h.iter().zip(&self.slab_n).zip(s.q.iter_mut()) {
+                        if hk != 0.0 {
+                            if (nk - p) * (nk + p) <= 1e-6 * nk * nk {
+                                break 'tail Some(idx);
+                            }
+                            *qk = q_of(nk, p);
                         }
-                        *qk = q_of(nk, p);
                     }
-                }
-                // Directions of the segments (every segment's slab is crossed: h ≠ 0).
-                s.dirs.clear();
-                for (i, &slab) in c.seg_slab.iter().enumerate() {
-                    let n = self.slab_n[slab];
-                    let sg = if i == last { sign_last } else { c.seg_sign[i] };
-                    let q = if s.h[slab] != 0.0 {
-                        s.q[slab]
-                    } else {
-                        q_of(n, p)
-                    };
-                    let dir = p * u + (sg * q) * nn;
-                    // x/1 = x: the air's segments skip the division.
-                    s.dirs.push(if n == 1.0 { dir } else { dir / n });
-                }
-                let d_last = s.dirs[last];
-                if !build::records(observer, d_last) {
-                    continue;
-                }
-                if !self.shields.is_empty() {
-                    match self.shielded(src, c, point, &s.dirs) {
-                        Some(true) => continue,
-                        Some(false) => {}
-                        None => return false,
-                    }
-                }
-                // Fresnel coefficients and frames of the events.
-                s.frames.clear();
-                s.frames_complex.clear();
-                for (i, ev) in c.events.iter().enumerate() {
-                    let q2_2 = (ev.n2 - p) * (ev.n2 + p);
-                    if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
-                        return false;
-                    }
-                    // n1 cos θi = q of the arriving segment's slab (n1 is its index).
-                    // (x/1 = x: the divisions by an index of 1 are skipped.)
-                    let q1 = s.q[c.seg_slab[i]];
-                    let cos_i = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
-                    let c2t = if ev.n2 == 1.0 {
-                        q2_2
-                    } else {
-                        q2_2 / (ev.n2 * ev.n2)
-                    };
-                    let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
-                    let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
-                        return false;
-                    };
-                    let pick = |f: fresnel::FresnelCoefficients| {
-                        if ev.reflect {
-                            [f.r_s, f.r_p]
+                    // Directions of the segments (every segment's slab is crossed: h ≠ 0).
+                    s.dirs.clear();
+                    for (i, &slab) in c.seg_slab.iter().enumerate() {
+                        let n = self.slab_n[slab];
+                        let sg = if i == last { sign_last } else { c.seg_sign[i] };
+                        let q = if s.h[slab] != 0.0 {
+                            s.q[slab]
                         } else {
-                            [f.t_s, f.t_p]
-                        }
-                    };
-                    // (c_s, c_p), real: no interface where n1 = n2 (`fresnel`).
-                    let vector = match (ev.n1 == ev.n2, ev.reflect) {
-                        (true, true) => [0.0; 2],
-                        (true, false) => [1.0; 2],
-                        (false, reflect) => fresnel::fresnel_real_pair_with_cos2_t(
-                            ev.n1, ev.n2, cos_i, c2t, reflect,
-                        ),
-                    };
-                    let paper_c = paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
-                    s.frames.push(Frame {
-                        s: sv,
-                        p_i: d_i.cross(sv),
-                        p_o: d_o.cross(sv),
-                        vector,
-                        paper: paper_c.map_or([0.0; 2], |[a, b]| [a.re, b.re]),
-                    });
-                    if arithmetic == KernelArithmetic::Complex {
-                        let f = if ev.n1 == ev.n2 {
-                            fresnel::fresnel(ev.n1, ev.n2, cos_i)
-                        } else {
-                            fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, c2t)
+                            q_of(n, p)
                         };
-                        s.frames_complex
-                            .push([pick(f), paper_c.unwrap_or([Complex64::default(); 2])]);
+                        let dir = p * u + (sg * q) * nn;
+                        // x/1 = x: the air's segments skip the division.
+                        s.dirs.push(if n == 1.0 { dir } else { dir / n });
                     }
-                }
-                // The optical path (for the coherence-length rule) and Δs.
-                let mut path = p * d;
-                for (&hk, &qk) in s.h.iter().zip(&s.q) {
-                    if hk != 0.0 {
-                        path += hk * qk;
+                    let d_last = s.dirs[last];
+                    if !build::records(observer, d_last) {
+                        continue;
                     }
-                }
-                let delta = match reference {
-                    None => {
-                        reference = Some(p);
-                        s.ref_h.copy_from_slice(&s.h);
-                        s.ref_q.copy_from_slice(&s.q);
-                        0.0
-                    }
-                    Some(pr) => {
-                        let mut bracket = d;
-                        let mut extra = 0.0;
-                        for (k, ((&hj, &hr), &nk)) in
-                            s.h.iter().zip(&s.ref_h).zip(&self.slab_n).enumerate()
-                        {
-                            // q_k(p) of a slab this ray does not cross (hj = 0) is not cached.
-                            let qj = if hj != 0.0 { s.q[k] } else { q_of(nk, p) };
-                            if hr != 0.0 {
-                                bracket -= hr * (pr + p) / (s.ref_q[k] + qj);
-                            }
-                            let dh = hj - hr;
-                            if dh != 0.0 {
-                                extra += dh * qj;
-                            }
+                    if !self.shields.is_empty() {
+                        match self.shielded(src, c, point, &s.dirs) {
+                            Some(true) => continue,
+                            Some(false) => {}
+                            None => break 'tail Some(idx),
                         }
-                        (p - pr) * bracket + extra
                     }
-                };
-                let lost_length = path > src.coherence_length_m;
-                if (path - src.coherence_length_m).abs() <= 1e-9 * path {
-                    return false;
-                }
-                let d0 = s.dirs[0];
-                let mut shared: Option<(DVec3, DVec3)> = None;
-                for ((ch, linear), &sqrt_intensity) in src
-                    .channels
-                    .iter()
-                    .zip(&src.linear)
-                    .zip(&src.sqrt_intensity)
-                {
-                    let (e, amp) = match *linear {
-                        Some((reference, cos, sin)) => {
-                            let e_ref = match shared {
-                                Some((r, e)) if r == reference => e,
-                                _ => {
-                                    let e = field_reference(reference, d0);
-                                    shared = Some((reference, e));
-                                    e
-                                }
-                            };
-                            (cos * e_ref + sin * d0.cross(e_ref), 1.0)
+                    // Fresnel coefficients and frames of the events.
+                    s.frames.clear();
+                    s.frames_complex.clear();
+                    s.cos.fill(f64::NAN);
+                    let mut q_unit = f64::NAN;
+                    for (i, ev) in c.events.iter().enumerate() {
+                        let q2_2 = (ev.n2 - p) * (ev.n2 + p);
+                        if q2_2 <= 1e-6 * ev.n2 * ev.n2 {
+                            break 'tail Some(idx);
                         }
-                        None => ch.launch(d0),
-                    };
-                    let a = amp * sqrt_intensity;
-                    let launch = DVec3::new(e.x * a, e.y * a, e.z * a);
-                    let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
-                    out.push(KernelRay {
-                        path: idx,
-                        coherence_id: if coherent {
-                            ch.coherence_id
+                        // n1 cos θi = q of the arriving segment's slab (n1 is its index).
+                        // (x/1 = x: the divisions by an index of 1 are skipped.)
+                        // Formed once per slab (`cos`): two events leaving one slab share it.
+                        let k1 = c.seg_slab[i];
+                        if s.cos[k1].is_nan() {
+                            let q1 = s.q[k1];
+                            s.cos[k1] = (if ev.n1 == 1.0 { q1 } else { q1 / ev.n1 }).min(1.0);
+                        }
+                        let cos_i = s.cos[k1];
+                        let c2t = if ev.n2 == 1.0 {
+                            q2_2
                         } else {
-                            INCOHERENT
-                        },
-                        delta_s_m: delta,
-                        denser_reflections: c.denser_reflections,
-                        vector: match arithmetic {
-                            KernelArithmetic::Real => carry::<false>(launch, &s.frames),
-                            KernelArithmetic::Complex => {
-                                carry_complex(launch, &s.frames, &s.frames_complex, false)
+                            q2_2 / (ev.n2 * ev.n2)
+                        };
+                        // cos θt = √c2t; into an index of 1 that is √((1 − p)(1 + p)), formed
+                        // once per ray (`q_unit`): the events into air share it.
+                        let cos_t = if ev.n2 == 1.0 {
+                            if q_unit.is_nan() {
+                                q_unit = c2t.sqrt();
                             }
-                        },
-                        paper: match (paper, arithmetic) {
-                            (false, _) => DVec3::ZERO,
-                            (true, KernelArithmetic::Real) => carry::<true>(launch, &s.frames),
-                            (true, KernelArithmetic::Complex) => {
-                                carry_complex(launch, &s.frames, &s.frames_complex, true)
+                            q_unit
+                        } else {
+                            c2t.sqrt()
+                        };
+                        let (d_i, d_o) = (s.dirs[i], s.dirs[i + 1]);
+                        let Some(sv) = fresnel::s_of_plane_of_incidence(d_i, ev.normal) else {
+                            break 'tail Some(idx);
+                        };
+                        let pick = |f: fresnel::FresnelCoefficients| {
+                            if ev.reflect {
+                                [f.r_s, f.r_p]
+                            } else {
+                                [f.t_s, f.t_p]
                             }
-                        },
-                    });
+                        };
+                        // (c_s, c_p), real: no interface where n1 = n2 (`fresnel`).
+                        let vector = match (ev.n1 == ev.n2, ev.reflect) {
+                            (true, true) => [0.0; 2],
+                            (true, false) => [1.0; 2],
+                            (false, reflect) => {
+                                fresnel_pair_with_cos_t(ev.n1, ev.n2, cos_i, cos_t, reflect)
+                            }
+                        };
+                        let paper_c =
+                            paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
+                        s.frames.push(Frame {
+                            s: sv,
+                            p_i: d_i.cross(sv),
+                            p_o: d_o.cross(sv),
+                            vector,
+                            paper: paper_c.map_or([0.0; 2], |[a, b]| [a.re, b.re]),
+                        });
+                        if arithmetic == KernelArithmetic::Complex {
+                            let f = if ev.n1 == ev.n2 {
+                                fresnel::fresnel(ev.n1, ev.n2, cos_i)
+                            } else {
+                                fresnel::fresnel_with_cos2_t(ev.n1, ev.n2, cos_i, c2t)
+                            };
+                            s.frames_complex
+                                .push([pick(f), paper_c.unwrap_or([Complex64::default(); 2])]);
+                        }
+                    }
+                    // The optical path (for the coherence-length rule) and Δs.
+                    let mut path = p * d;
+                    for (&hk, &qk) in s.h.iter().zip(&s.q) {
+                        if hk != 0.0 {
+                            path += hk * qk;
+                        }
+                    }
+                    let delta = match reference {
+                        None => {
+                            reference = Some(p);
+                            s.ref_h.copy_from_slice(&s.h);
+                            s.ref_q.copy_from_slice(&s.q);
+                            0.0
+                        }
+                        Some(pr) => {
+                            let mut bracket = d;
+                            let mut extra = 0.0;
+                            for (k, ((&hj, &hr), &nk)) in
+                                s.h.iter().zip(&s.ref_h).zip(&self.slab_n).enumerate()
+                            {
+                                // q_k(p) of a slab this ray does not cross (hj = 0) is not cached.
+                                let qj = if hj != 0.0 { s.q[k] } else { q_of(nk, p) };
+                                if hr != 0.0 {
+                                    bracket -= hr * (pr + p) / (s.ref_q[k] + qj);
+                                }
+                                let dh = hj - hr;
+                                if dh != 0.0 {
+                                    extra += dh * qj;
+                                }
+                            }
+                            (p - pr) * bracket + extra
+                        }
+                    };
+                    let lost_length = path > src.coherence_length_m;
+                    if (path - src.coherence_length_m).abs() <= 1e-9 * path {
+                        break 'tail Some(idx);
+                    }
+                    let d0 = s.dirs[0];
+                    let mut shared: Option<(DVec3, DVec3)> = None;
+                    for ((ch, linear), &sqrt_intensity) in src
+                        .channels
+                        .iter()
+                        .zip(&src.linear)
+                        .zip(&src.sqrt_intensity)
+                    {
+                        let (e, amp) = match *linear {
+                            Some((reference, cos, sin)) => {
+                                let e_ref = match shared {
+                                    Some((r, e)) if r == reference => e,
+                                    _ => {
+                                        let e = field_reference(reference, d0);
+                                        shared = Some((reference, e));
+                                        e
+                                    }
+                                };
+                                (cos * e_ref + sin * d0.cross(e_ref), 1.0)
+                            }
+                            None => ch.launch(d0),
+                        };
+                        let a = amp * sqrt_intensity;
+                        let launch = DVec3::new(e.x * a, e.y * a, e.z * a);
+                        let coherent = c.keeps && !lost_length && ch.coherence_id != INCOHERENT;
+                        out.push(KernelRay {
+                            path: idx,
+                            coherence_id: if coherent {
+                                ch.coherence_id
+                            } else {
+                                INCOHERENT
+                            },
+                            delta_s_m: delta,
+                            denser_reflections: c.denser_reflections,
+                            vector: match arithmetic {
+                                KernelArithmetic::Real => carry::<false>(launch, &s.frames),
+                                KernelArithmetic::Complex => {
+                                    carry_complex(launch, &s.frames, &s.frames_complex, false)
+                                }
+                            },
+                            paper: match (paper, arithmetic) {
+                                (false, _) => DVec3::ZERO,
+                                (true, KernelArithmetic::Real) => carry::<true>(launch, &s.frames),
+                                (true, KernelArithmetic::Complex) => {
+                                    carry_complex(launch, &s.frames, &s.frames_complex, true)
+                                }
+                            },
+                        });
+                    }
                 }
+                None
+            };
+            if let Some(idx) = tail_failed {
+                s.guess[idx + 1..flat + len].copy_from_slice(&s.snapshot[idx + 1 - flat..]);
+                return false;
+            }
+            if failed {
+                return false;
             }
             flat += src.seqs.len();
         }
@@ -1056,7 +1182,14 @@ impl StackKernel {
                 if den == 0.0 {
                     continue;
                 }
-                let t = (sh.plane.point - a).dot(sh.plane.normal) / den;
+                let num = (sh.plane.point - a).dot(sh.plane.normal);
+                // |num| > 2|den| (2|den| and the comparison exact): the quotient is beyond ±2 and
+                // so is its rounding (rounding is monotonic and ±2 are floats), outside the range
+                // below, without the division (the segments of a thin layer far from a shield).
+                if num.abs() > 2.0 * den.abs() {
+                    continue;
+                }
+                let t = num / den;
                 if !(-0.5..=1.5).contains(&t) {
                     continue;
                 }
@@ -1069,12 +1202,10 @@ impl StackKernel {
                     continue;
                 }
                 if !(t * l > far && (1.0 - t) * l > far) {
-                    let tm = self.margin / ab.length();
-                    if t < -tm || t > 1.0 + tm {
-                        continue;
-                    }
-                    if t.abs() <= tm || (t - 1.0).abs() <= tm {
-                        return None;
+                    match near_end(self.margin, ab, t) {
+                        Some(false) => continue,
+                        Some(true) => {}
+                        None => return None,
                     }
                 }
                 let x = a + t * ab;
