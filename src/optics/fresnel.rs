@@ -164,7 +164,20 @@ pub fn fresnel_real_pair_with_cos2_t(
         c2t >= 0.0,
         "total internal reflection has complex coefficients"
     );
-    let cos_t = c2t.sqrt();
+    fresnel_real_pair_with_cos_t(n1, n2, cos_i, c2t.sqrt(), reflect)
+}
+
+/// [`fresnel_real_pair_with_cos2_t`] from cos θt itself (cos θt ≥ 0, the square root of cos²θt
+/// taken by the caller, e.g. once for the events that share it): the same operations, bit for
+/// bit.
+#[inline]
+pub fn fresnel_real_pair_with_cos_t(
+    n1: f64,
+    n2: f64,
+    cos_i: f64,
+    cos_t: f64,
+    reflect: bool,
+) -> [f64; 2] {
     let n1ci = n1 * cos_i;
     let n2ci = n2 * cos_i;
     let n2ct = cos_t * n2;

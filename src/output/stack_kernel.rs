@@ -95,7 +95,7 @@
 //! the compiler hoisted them before the bound that skips them: 28% of `shielded`'s samples,
 //! `perf annotate`) and skips a crossing beyond ±2 of a segment without its division; the
 //! events leaving one slab share cos θi, the events into an index of 1 share cos θt
-//! (`fresnel_pair_with_cos_t`); `shade_terms` pairs in one pass. Measured (session 17,
+//! (`fresnel::fresnel_real_pair_with_cos_t`); `shade_terms` pairs in one pass. Measured (session 17,
 //! 2-core VM shared with other builds, `fringe render plate_amplitude_division --size 900x900
 //! --samples 81 --fidelity vector`, user + sys CPU, interleaved with the previous binary):
 //! 2 threads, 15 runs, load 1.6–1.9: min 0.462 → 0.442 s, median 0.511 → 0.473 s; one thread,
@@ -535,27 +535,6 @@ fn start_of(g: [f64; 4]) -> f64 {
     } else {
         g1
     }
-}
-
-/// [`fresnel::fresnel_real_pair_with_cos2_t`] from cos θt itself (its square root of c2t
-/// taken by the caller, once for the events that share it): the same operations, bit for bit.
-#[inline]
-fn fresnel_pair_with_cos_t(n1: f64, n2: f64, cos_i: f64, cos_t: f64, reflect: bool) -> [f64; 2] {
-    let n1ci = n1 * cos_i;
-    let n2ci = n2 * cos_i;
-    let n2ct = cos_t * n2;
-    let n1ct = cos_t * n1;
-    let den_s = n1ci + n2ct;
-    let den_p = n2ci + n1ct;
-    let (a_s, a_p) = if reflect {
-        (n1ci - n2ct, n2ci - n1ct)
-    } else {
-        (2.0 * n1ci, 2.0 * n1ci)
-    };
-    [
-        (a_s * den_s) / (den_s * den_s),
-        (a_p * den_p) / (den_p * den_p),
-    ]
 }
 
 /// Complex `e · v`, as [`crate::optics::interaction`] forms it.
@@ -1028,9 +1007,9 @@ impl StackKernel {
                         let vector = match (ev.n1 == ev.n2, ev.reflect) {
                             (true, true) => [0.0; 2],
                             (true, false) => [1.0; 2],
-                            (false, reflect) => {
-                                fresnel_pair_with_cos_t(ev.n1, ev.n2, cos_i, cos_t, reflect)
-                            }
+                            (false, reflect) => fresnel::fresnel_real_pair_with_cos_t(
+                                ev.n1, ev.n2, cos_i, cos_t, reflect,
+                            ),
                         };
                         let paper_c =
                             paper.then(|| pick(fresnel::paper_rules(ev.n1, ev.n2, cos_i)));
